@@ -1,0 +1,137 @@
+//! Per-step diagnostics and their summary: the Hamiltonian from the Legendre transform, the paper's
+//! discrete energy L_d(q_k, q_{k+1}) (§7.2), the momentum map J(q, p) = p_g (Lemma 2.1) and Newton
+//! statistics.
+
+/// One reported row of a trajectory.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row<'a> {
+    /// Step index k.
+    pub k: usize,
+    /// Time t_k = k h.
+    pub t: f64,
+    /// Configuration q_k (angles unwrapped unless asked otherwise).
+    pub q: &'a [f64],
+    /// Canonical momenta p_k.
+    pub p: &'a [f64],
+    /// The Hamiltonian H(q_k, p_k).
+    pub energy: f64,
+    /// L_d(q_k, q_{k+1}); `None` on the last row.
+    pub discrete_energy: Option<f64>,
+    /// The momentum map J(q_k, p_k) = p_g, one entry per group coordinate.
+    pub momentum_map: &'a [f64],
+}
+
+/// Minimum, maximum and mean of a quantity, with its first value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stats {
+    /// First value.
+    pub initial: f64,
+    /// Smallest value.
+    pub min: f64,
+    /// Largest value.
+    pub max: f64,
+    /// Arithmetic mean.
+    pub mean: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Accumulator {
+    first: Option<f64>,
+    min: f64,
+    max: f64,
+    sum: f64,
+    count: usize,
+}
+
+impl Default for Accumulator {
+    fn default() -> Self {
+        Self { first: None, min: f64::INFINITY, max: f64::NEG_INFINITY, sum: 0.0, count: 0 }
+    }
+}
+
+impl Accumulator {
+    pub fn push(&mut self, value: f64) {
+        self.first.get_or_insert(value);
+        self.min = self.min.min(value);
+        self.max = self.max.max(value);
+        self.sum += value;
+        self.count += 1;
+    }
+
+    pub fn stats(&self) -> Stats {
+        Stats {
+            initial: self.first.unwrap_or(f64::NAN),
+            min: self.min,
+            max: self.max,
+            mean: self.sum / self.count.max(1) as f64,
+        }
+    }
+}
+
+/// The momentum map's first value and its largest deviation from it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MomentumMapDrift {
+    /// J(q0, p0).
+    pub initial: Vec<f64>,
+    /// max_k ‖J_k − J_0‖∞ over all steps.
+    pub max_drift: f64,
+    /// `max_drift / max(‖J_0‖∞, tiny)`.
+    pub max_relative_drift: f64,
+}
+
+/// Newton statistics over all steps.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct NewtonSummary {
+    /// Sum of Newton corrections over all steps.
+    pub total_iterations: usize,
+    /// Largest number of corrections in one step.
+    pub max_iterations: usize,
+    /// Largest accepted residual norm.
+    pub max_residual: f64,
+}
+
+/// What a run reports at its end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    /// Coordinate names, in order.
+    pub coordinates: Vec<String>,
+    /// Number of steps N.
+    pub steps: usize,
+    /// Step size h.
+    pub step: f64,
+    /// q_N (angles unwrapped unless asked otherwise).
+    pub final_q: Vec<f64>,
+    /// p_N.
+    pub final_p: Vec<f64>,
+    /// The Hamiltonian over the reported rows.
+    pub energy: Stats,
+    /// L_d(q_k, q_{k+1}) over all steps.
+    pub discrete_energy: Stats,
+    /// The momentum map over all steps.
+    pub momentum_map: MomentumMapDrift,
+    /// Newton statistics over all steps.
+    pub newton: NewtonSummary,
+    /// Wall-clock time of the integration loop.
+    pub wall_seconds: f64,
+    /// ‖q(T) − q_N‖ on the coordinates the exact solution gives, when the system has one.
+    pub reference_error: Option<f64>,
+}
+
+/// A trajectory kept in memory: the reported rows and the summary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// Times of the reported rows.
+    pub t: Vec<f64>,
+    /// Configurations of the reported rows.
+    pub q: Vec<Vec<f64>>,
+    /// Momenta of the reported rows.
+    pub p: Vec<Vec<f64>>,
+    /// Hamiltonian of the reported rows.
+    pub energy: Vec<f64>,
+    /// L_d(q_k, q_{k+1}) of the reported rows (NaN on the last).
+    pub discrete_energy: Vec<f64>,
+    /// Momentum map of the reported rows.
+    pub momentum_map: Vec<Vec<f64>>,
+    /// The run's summary.
+    pub summary: Summary,
+}

@@ -1,0 +1,227 @@
+//! The generic stepper: joins a [`System`], a [`Problem`] and a [`Method`], owns the predictor, the
+//! Newton solve, the reconstruction in re-centred charts, the diagnostics and failure reporting.
+//!
+//! Each step k solves the chosen scheme's equations for chart-local unknowns z (increments, and γ_k
+//! for the reduced schemes) by Newton's method from a predictor (the previous step's unknowns,
+//! extrapolated linearly; on the first step h · v0 from the Legendre transform), then advances the
+//! configuration and the momenta.
+
+use std::time::Instant;
+
+use nalgebra::SVector;
+
+use crate::chart::Configuration;
+use crate::diagnostics::{Accumulator, MomentumMapDrift, NewtonSummary, Row, Solution, Summary};
+use crate::mechanics::dirac::LagrangeDirac;
+use crate::mechanics::legendre;
+use crate::reduction::invariance::check_invariance;
+use crate::reduction::reduced::LagrangePoincareDirac;
+use crate::scheme::Scheme;
+use crate::{newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System};
+
+/// The error type an output consumer may return.
+pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Runs `problem` for `system` with `method`, handing every reported row to `observer`.
+///
+/// Rows are reported at k = 0, every, 2·every, … and at k = N. The integration stops at the first
+/// error, whether from the input, the Newton solve, a non-finite state or the observer.
+///
+/// ```
+/// use ddirac::{integrate, InitialMomentum, Method, OutputOptions, Problem, Rule, systems::ChargedParticle};
+/// let problem = Problem::new(0.2, 100, vec![0.0; 4], InitialMomentum::Momentum(vec![1.0, 0.0, 1.0, 1.0]));
+/// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
+/// let mut rows = 0;
+/// let summary = integrate(&ChargedParticle::default(), &problem, &method, &OutputOptions::default(), &mut |_| {
+///     rows += 1;
+///     Ok(())
+/// })
+/// .unwrap();
+/// assert_eq!(rows, 101);
+/// assert!((summary.reference_error.unwrap() - 0.06626).abs() < 5e-6); // paper, Table 1
+/// ```
+pub fn integrate<S: System<N>, const N: usize>(
+    system: &S,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+    observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+) -> Result<Summary, Error> {
+    problem.validate(N)?;
+    if output.every == 0 {
+        return Err(Error::Invalid { what: "output.every".into(), why: "must be at least 1".into() });
+    }
+    let coordinates = system.coordinates();
+    let split = Split::new(&coordinates);
+    let q0: [f64; N] = problem.q0.as_slice().try_into().expect("validated size");
+    let p0: [f64; N] = match &problem.initial {
+        InitialMomentum::Momentum(p) => p.as_slice().try_into().expect("validated size"),
+        InitialMomentum::Velocity(v) => legendre::momentum(system, &q0, &v.as_slice().try_into().expect("validated size")),
+    };
+    if let Some((i, &x)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(Error::NonFinite { what: format!("initial momentum of `{}`", coordinates[i].name), value: x });
+    }
+    let connection = match &method.connection {
+        Some(rows) => Connection::new(rows, split.n_x(), split.n_g())?,
+        None => Connection::zero(split.n_x(), split.n_g()),
+    };
+    connection.check_axioms()?;
+    let ld = DiscreteLagrangian::new(system, method.rule, problem.step);
+    let (v0, _) = legendre::velocity(system, &q0, &p0);
+    let dq0: [f64; N] = std::array::from_fn(|i| if v0[i].is_finite() { v0[i] * problem.step } else { 0.0 });
+    let run = Run { system, problem, output, split: &split, q0, p0, dq0 };
+    if method.reduced {
+        if split.n_g() == 0 {
+            return Err(Error::NoSymmetry);
+        }
+        if method.check_invariance {
+            check_invariance(&ld, &split, &q0, &dq0)?;
+        }
+        let scheme = LagrangePoincareDirac { ld, connection: &connection, split: &split, variant: method.variant };
+        run.go(&scheme, method, observer)
+    } else {
+        run.go(&LagrangeDirac { ld }, method, observer)
+    }
+}
+
+/// Runs `problem` and keeps every reported row in memory.
+///
+/// ```
+/// use ddirac::{solve, InitialMomentum, Method, OutputOptions, Problem, Rule, systems::ChargedParticle};
+/// let problem = Problem::new(2.0, 10, vec![0.0; 4], InitialMomentum::Momentum(vec![1.0, 0.0, 1.0, 1.0]));
+/// let method = Method { rule: Rule::Left, ..Method::default() };
+/// let solution = solve(&ChargedParticle::default(), &problem, &method, &OutputOptions::default()).unwrap();
+/// assert_eq!(solution.t.len(), 11);
+/// assert!((solution.summary.reference_error.unwrap() - 1.6781).abs() < 5e-5); // paper, Table 1
+/// ```
+pub fn solve<S: System<N>, const N: usize>(
+    system: &S,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+) -> Result<Solution, Error> {
+    let (mut t, mut q, mut p, mut energy, mut discrete_energy, mut momentum_map) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    let summary = integrate(system, problem, method, output, &mut |row| {
+        t.push(row.t);
+        q.push(row.q.to_vec());
+        p.push(row.p.to_vec());
+        energy.push(row.energy);
+        discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
+        momentum_map.push(row.momentum_map.to_vec());
+        Ok(())
+    })?;
+    Ok(Solution { t, q, p, energy, discrete_energy, momentum_map, summary })
+}
+
+struct Run<'a, S, const N: usize> {
+    system: &'a S,
+    problem: &'a Problem,
+    output: &'a OutputOptions,
+    split: &'a Split,
+    q0: [f64; N],
+    p0: [f64; N],
+    dq0: [f64; N],
+}
+
+impl<S: System<N>, const N: usize> Run<'_, S, N> {
+    fn go(
+        &self,
+        scheme: &impl Scheme<N>,
+        method: &Method,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+    ) -> Result<Summary, Error> {
+        let started = Instant::now();
+        let (h, steps, split) = (self.problem.step, self.problem.steps, self.split);
+        let coordinates = self.system.coordinates();
+        let kinds = coordinates.each_ref().map(|c| c.kind);
+        let mut config = Configuration::new(self.q0, kinds);
+        let mut momenta = scheme.momenta_from_p(&self.p0);
+        let j0 = split.g(&self.p0);
+        let mut z_prev: Option<SVector<f64, N>> = None;
+        let mut z = scheme.unknowns(&self.dq0);
+        let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
+        let mut newton_summary = NewtonSummary::default();
+        let mut max_drift = 0.0f64;
+
+        for k in 0..=steps {
+            let t = k as f64 * h;
+            let p = scheme.p_from_momenta(&momenta);
+            let j: Vec<f64> = split.g(&p);
+            max_drift = j.iter().zip(&j0).fold(max_drift, |m, (a, b)| m.max((a - b).abs()));
+            let report = k % self.output.every == 0 || k == steps;
+            if k == steps {
+                if report {
+                    let q = config.output(self.output.wrap_angles);
+                    let e = legendre::hamiltonian(self.system, config.base(), &p);
+                    energy.push(e);
+                    let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: None, momentum_map: &j };
+                    observer(&row).map_err(Error::Output)?;
+                }
+                break;
+            }
+
+            let base = scheme.base(config.base());
+            let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut last = None;
+            let stats = newton::solve(&mut z, scale, &method.newton, |z| {
+                let e = scheme.evaluate(&base, &momenta, z);
+                last = Some(e);
+                (e.residual, e.jacobian)
+            })
+            .map_err(|f| Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason })?;
+            let last = last.expect("Newton evaluates at least once");
+            let dq = scheme.increment(&z);
+            if dq.iter().chain(&last.momenta_next).any(|v| !v.is_finite()) || !last.discrete_energy.is_finite() {
+                return Err(Error::Diverged { step: k, t, what: "state" });
+            }
+            discrete_energy.push(last.discrete_energy);
+            newton_summary.total_iterations += stats.iterations;
+            newton_summary.max_iterations = newton_summary.max_iterations.max(stats.iterations);
+            newton_summary.max_residual = newton_summary.max_residual.max(stats.residual);
+
+            if report {
+                let q = config.output(self.output.wrap_angles);
+                let e = legendre::hamiltonian(self.system, config.base(), &p);
+                energy.push(e);
+                let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: Some(last.discrete_energy), momentum_map: &j };
+                observer(&row).map_err(Error::Output)?;
+            }
+
+            config.advance(&dq);
+            momenta = last.momenta_next;
+            let predicted = match z_prev {
+                Some(prev) => 2.0 * z - prev,
+                None => z,
+            };
+            z_prev = Some(z);
+            z = predicted;
+        }
+
+        let final_q = config.output(self.output.wrap_angles).to_vec();
+        let final_p = scheme.p_from_momenta(&momenta).to_vec();
+        let reference_error = self.system.exact_solution(&self.q0, &self.p0, self.problem.duration()).and_then(|exact| {
+            let unwrapped = config.unwrapped();
+            let terms: Vec<f64> = exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+            (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+        });
+        let j_scale = j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        Ok(Summary {
+            coordinates: coordinates.iter().map(|c| c.name.clone()).collect(),
+            steps,
+            step: h,
+            final_q,
+            final_p,
+            energy: energy.stats(),
+            discrete_energy: discrete_energy.stats(),
+            momentum_map: MomentumMapDrift {
+                initial: j0,
+                max_drift,
+                max_relative_drift: max_drift / j_scale.max(f64::MIN_POSITIVE),
+            },
+            newton: newton_summary,
+            wall_seconds: started.elapsed().as_secs_f64(),
+            reference_error,
+        })
+    }
+}

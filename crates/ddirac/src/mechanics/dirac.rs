@@ -1,0 +1,56 @@
+//! Unreduced (+) and (−) discrete Lagrange–Dirac equations (paper §2.3.2).
+//!
+//! In the unconstrained case both read, in position–momentum form,
+//!
+//! ```text
+//! (+):  q_k^+ = q_{k+1},  p_k = −D1 L_d(q_k, q_k^+),  p_{k+1} = D2 L_d(q_k, q_k^+)
+//! (−):  q_{k+1}^- = q_k,  p_k = −D1 L_d(q_{k+1}^-, q_{k+1}),  p_{k+1} = D2 L_d(q_{k+1}^-, q_{k+1})
+//! ```
+//!
+//! which is the same map (the discrete Euler–Lagrange equations): given (q_k, p_k), solve the first
+//! momentum equation for q_{k+1} by Newton's method (Jacobian D1 D2 L_d), then evaluate p_{k+1}.
+//! Degenerate Lagrangians are allowed as long as D1 D2 L_d is invertible.
+//!
+//! The unknowns are the chart increments z = q_{k+1} − q_k.
+
+use nalgebra::SVector;
+
+use crate::scheme::{Evaluation, Scheme};
+use crate::{DiscreteLagrangian, System};
+
+/// The position–momentum discrete Euler–Lagrange map, shared by the (+) and (−) variants.
+pub(crate) struct LagrangeDirac<'a, S> {
+    pub ld: DiscreteLagrangian<'a, S>,
+}
+
+impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
+    fn base(&self, q: &[f64; N]) -> [f64; N] {
+        *q
+    }
+
+    fn evaluate(&self, base: &[f64; N], p: &[f64; N], z: &SVector<f64, N>) -> Evaluation<N> {
+        let d = self.ld.derivatives_local(base, &SVector::zeros(), z);
+        Evaluation {
+            residual: SVector::from(*p) + d.d1,
+            jacobian: d.d1d2,
+            discrete_energy: d.value,
+            momenta_next: d.d2.into(),
+        }
+    }
+
+    fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {
+        (*z).into()
+    }
+
+    fn unknowns(&self, dq: &[f64; N]) -> SVector<f64, N> {
+        SVector::from(*dq)
+    }
+
+    fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N] {
+        *p
+    }
+
+    fn p_from_momenta(&self, momenta: &[f64; N]) -> [f64; N] {
+        *momenta
+    }
+}

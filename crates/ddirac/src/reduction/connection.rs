@@ -1,0 +1,161 @@
+//! Linear discrete principal connections (paper Definition 2.1 and §2.2.1).
+//!
+//! With h_d(q0, x1) linear, the axiom h_d(q0, x0) = g0 and equivariance force
+//!
+//! ```text
+//! h_d(q0, x1) = g0 + K (x1 − x0),            K = h_{d,Σ} ∈ ℝ^{n_g × n_x}
+//! ω_d(q0, q1) = g1 − h_d(q0, x1) = g1 − g0 − K (x1 − x0)
+//! h_{d,Q}(x0, g0) = h_d(q0, 0) = g0 − K x0,   h_{d,Σ}(x1) = h_d(0, x1) = K x1
+//! h_d^0(x0, x1) = h_d((x0, 0), x1) = K (x1 − x0)
+//! ```
+//!
+//! so a linear connection is one matrix K. Both examples of the paper use K = 0; the centre-of-mass
+//! connection of two bodies (x = r2 − r1, g = r1) has K = −m2/(m1 + m2) · I.
+
+use nalgebra::DMatrix;
+
+use crate::Error;
+
+/// A linear discrete principal connection, given by K = h_{d,Σ}.
+///
+/// ```
+/// use ddirac::Connection;
+/// let k = Connection::new(&[vec![-0.5]], 1, 1).unwrap();
+/// // ω_d((x0, g0), (x1, g1)) = g1 − g0 − K (x1 − x0)
+/// assert_eq!(k.omega_d((&[0.0], &[0.0]), (&[2.0], &[1.0])), vec![2.0]);
+/// assert!(k.check_axioms().is_ok());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Connection {
+    k: DMatrix<f64>,
+}
+
+impl Connection {
+    /// The trivial connection K = 0: ω_d(q0, q1) = g1 − g0.
+    pub fn zero(n_x: usize, n_g: usize) -> Self {
+        Self { k: DMatrix::zeros(n_g, n_x) }
+    }
+
+    /// K from its rows (n_g rows of n_x entries each).
+    pub fn new(rows: &[Vec<f64>], n_x: usize, n_g: usize) -> Result<Self, Error> {
+        let invalid = |why: String| Error::Invalid { what: "connection".into(), why };
+        if rows.len() != n_g {
+            return Err(invalid(format!(
+                "K must have one row per group coordinate ({n_g}), found {} rows",
+                rows.len()
+            )));
+        }
+        for (j, row) in rows.iter().enumerate() {
+            if row.len() != n_x {
+                return Err(invalid(format!(
+                    "row {} of K has {} entries, expected one per shape coordinate ({n_x})",
+                    j + 1,
+                    row.len()
+                )));
+            }
+            if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+                return Err(invalid(format!("row {} of K contains the non-finite value {v}", j + 1)));
+            }
+        }
+        Ok(Self { k: DMatrix::from_fn(n_g, n_x, |j, i| rows[j][i]) })
+    }
+
+    /// K as a matrix.
+    pub fn matrix(&self) -> &DMatrix<f64> {
+        &self.k
+    }
+
+    /// dim Σ.
+    pub fn n_x(&self) -> usize {
+        self.k.ncols()
+    }
+
+    /// dim G.
+    pub fn n_g(&self) -> usize {
+        self.k.nrows()
+    }
+
+    /// Entry K[j, i] (group row j, shape column i).
+    #[inline]
+    pub fn entry(&self, j: usize, i: usize) -> f64 {
+        self.k[(j, i)]
+    }
+
+    /// Whether K = 0.
+    pub fn is_zero(&self) -> bool {
+        self.k.iter().all(|&v| v == 0.0)
+    }
+
+    /// K x.
+    pub fn apply(&self, x: &[f64]) -> Vec<f64> {
+        (0..self.n_g()).map(|j| (0..self.n_x()).map(|i| self.k[(j, i)] * x[i]).sum()).collect()
+    }
+
+    /// Kᵀ μ = h*_{d,Σ}(μ).
+    pub fn transpose_apply(&self, mu: &[f64]) -> Vec<f64> {
+        (0..self.n_x()).map(|i| (0..self.n_g()).map(|j| self.k[(j, i)] * mu[j]).sum()).collect()
+    }
+
+    /// ω_d(q0, q1) = g1 − g0 − K (x1 − x0), with q = (x, g).
+    pub fn omega_d(&self, (x0, g0): (&[f64], &[f64]), (x1, g1): (&[f64], &[f64])) -> Vec<f64> {
+        let h = self.h_d((x0, g0), x1);
+        g1.iter().zip(h).map(|(a, b)| a - b).collect()
+    }
+
+    /// The horizontal lift h_d(q0, x1) = g0 + K (x1 − x0).
+    pub fn h_d(&self, (x0, g0): (&[f64], &[f64]), x1: &[f64]) -> Vec<f64> {
+        let dx: Vec<f64> = x1.iter().zip(x0).map(|(a, b)| a - b).collect();
+        g0.iter().zip(self.apply(&dx)).map(|(a, b)| a + b).collect()
+    }
+
+    /// h_{d,Q}(q0) = h_d(q0, 0) = g0 − K x0.
+    pub fn h_dq(&self, (x0, g0): (&[f64], &[f64])) -> Vec<f64> {
+        self.h_d((x0, g0), &vec![0.0; x0.len()])
+    }
+
+    /// h_{d,Σ}(x1) = h_d(0, x1) = K x1.
+    pub fn h_dsigma(&self, x1: &[f64]) -> Vec<f64> {
+        self.apply(x1)
+    }
+
+    /// h_d^0(x0, x1) = h_d((x0, 0), x1) = K (x1 − x0).
+    pub fn h_d0(&self, x0: &[f64], x1: &[f64]) -> Vec<f64> {
+        self.h_d((x0, &vec![0.0; self.n_g()]), x1)
+    }
+
+    /// Checks the axioms of Definition 2.1 and the decomposition (2.3) on a grid of sample points:
+    /// (i) ω_d(q, q) = 0; (ii) ω_d(a·q0, b·q1) = b + ω_d(q0, q1) − a; h_d = h_{d,Q} + h_{d,Σ}.
+    pub fn check_axioms(&self) -> Result<(), Error> {
+        let (n_x, n_g) = (self.n_x(), self.n_g());
+        let sample = |seed: usize, len: usize| -> Vec<f64> {
+            (0..len).map(|i| ((seed * 7 + i * 13) % 11) as f64 * 0.37 - 1.7).collect()
+        };
+        let scale = 1.0 + self.k.amax();
+        for s in 0..8 {
+            let (x0, g0, x1, g1) = (sample(s, n_x), sample(s + 1, n_g), sample(s + 2, n_x), sample(s + 3, n_g));
+            let (a, b) = (sample(s + 4, n_g), sample(s + 5, n_g));
+            let fail = |axiom: &str, dev: f64| Error::Invalid {
+                what: "connection".into(),
+                why: format!("axiom {axiom} of Definition 2.1 fails by {dev:.2e}"),
+            };
+            let dev0 = self.omega_d((&x0, &g0), (&x0, &g0)).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if dev0 > 1e-12 * scale {
+                return Err(fail("(i) ω_d(q, q) = e", dev0));
+            }
+            let shifted = |g: &[f64], by: &[f64]| -> Vec<f64> { g.iter().zip(by).map(|(u, v)| u + v).collect() };
+            let lhs = self.omega_d((&x0, &shifted(&g0, &a)), (&x1, &shifted(&g1, &b)));
+            let base = self.omega_d((&x0, &g0), (&x1, &g1));
+            let dev1 = (0..n_g).fold(0.0f64, |m, j| m.max((lhs[j] - (b[j] + base[j] - a[j])).abs()));
+            if dev1 > 1e-12 * scale * 10.0 {
+                return Err(fail("(ii) equivariance", dev1));
+            }
+            let split = self.h_dq((&x0, &g0)).iter().zip(self.h_dsigma(&x1)).map(|(u, v)| u + v).collect::<Vec<_>>();
+            let whole = self.h_d((&x0, &g0), &x1);
+            let dev2 = (0..n_g).fold(0.0f64, |m, j| m.max((split[j] - whole[j]).abs()));
+            if dev2 > 1e-12 * scale * 10.0 {
+                return Err(fail("h_d = h_{d,Q} + h_{d,Σ}", dev2));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,178 @@
+//! Reduced (+) and (−) discrete Lagrange–Poincaré–Dirac equations (paper §4.3–4.4), for a linear
+//! connection K (see [`crate::Connection`]).
+//!
+//! **(+)**, paper eq. `geometricequations`, with l₊(x0, x1, γ) = L_d((x0, 0), (x1, γ + K(x1 − x0)))
+//! (eq. `reducedlagrangianlocal`):
+//!
+//! ```text
+//! w_k = −∂l₊/∂x0,   μ_k = ∂l₊/∂γ,   w_{k+1} = ∂l₊/∂x1,   μ_{k+1} = μ_k,
+//! g_{k+1} = g_k + γ_k + K (x_{k+1} − x_k)
+//! ```
+//!
+//! **(−)**, with l₋(x0, γ, x1) = L_d((x0, γ + K(x0 − x1)), (x1, 0)) (eq. `reducedlagrangianlocalminus`):
+//!
+//! ```text
+//! w_k = −∂l₋/∂x0,   μ_k = −∂l₋/∂γ,   w_{k+1} = ∂l₋/∂x1,   μ_{k+1} = μ_k,
+//! g_{k+1} = g_k − γ_k + K (x_{k+1} − x_k)
+//! ```
+//!
+//! *Erratum.* The paper's display `geometricequationsminus` prints the opposite sign on every
+//! momentum term. The signs above follow from the reduced (−) Dirac structure and Dirac differential
+//! (`prop:reduceddiractructurelocalminus`, `prop:reduceddiracdifferentiallocalminus`) with Lemma
+//! `lemma:partialderivativesldminus`; with the printed signs the charged particle of §7 runs
+//! backwards in time (θ̇ = −1, z(20) = −20). The reduced Dirac structures and differentials in
+//! [`crate::reduction::dirac_structure`] state the equations independently, and a test checks both.
+//!
+//! Unknowns z (stored at the coordinates' own positions): Δx = x_{k+1} − x_k at the shape
+//! positions and γ_k at the group positions. A step solves the first two equations by Newton's
+//! method. Derivatives come from one pass of automatic differentiation of
+//! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
+//! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
+
+use nalgebra::{SMatrix, SVector};
+use num_dual::{partial_hessian, DualNum, HyperDualSVec64};
+
+use crate::scheme::{Evaluation, Scheme};
+use crate::{Connection, DiscreteLagrangian, Split, System, Variant};
+
+/// The reduced scheme of one variant.
+pub(crate) struct LagrangePoincareDirac<'a, S> {
+    pub ld: DiscreteLagrangian<'a, S>,
+    pub connection: &'a Connection,
+    pub split: &'a Split,
+    pub variant: Variant,
+}
+
+/// ∂l/∂(x0, γ), ∂l/∂(x1, γ) and the mixed block, at the positions of the coordinates.
+pub(crate) struct ReducedDerivatives<const N: usize> {
+    pub value: f64,
+    pub da: SVector<f64, N>,
+    pub db: SVector<f64, N>,
+    pub dadb: SMatrix<f64, N, N>,
+}
+
+impl<'a, S> LagrangePoincareDirac<'a, S> {
+    /// Σ_i K[j, i] (u_i − v_i) over the shape coordinates, for group row j.
+    fn k_times<D: DualNum<Primitive = f64> + Copy, const N: usize>(&self, j: usize, u: &[D; N], v: &[D; N]) -> D {
+        let mut acc = D::from(0.0);
+        for (i, &si) in self.split.shape.iter().enumerate() {
+            let kji = self.connection.entry(j, i);
+            if kji != 0.0 {
+                acc += (u[si] - v[si]) * kji;
+            }
+        }
+        acc
+    }
+
+    /// l̂(a, b): the reduced Lagrangian l± with x0 = x_k + a_x, x1 = x_k + b_x, γ = b_γ + a_γ.
+    pub(crate) fn lhat<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
+    where
+        S: System<N>,
+        D: DualNum<Primitive = f64> + Copy,
+    {
+        let zero = D::from(0.0);
+        let mut d0 = [zero; N];
+        let mut d1 = [zero; N];
+        for &si in &self.split.shape {
+            d0[si] = a[si];
+            d1[si] = b[si];
+        }
+        for (j, &gj) in self.split.group.iter().enumerate() {
+            let gamma = b[gj] + a[gj];
+            match self.variant {
+                Variant::Plus => d1[gj] = gamma + self.k_times(j, b, a),
+                Variant::Minus => d0[gj] = gamma + self.k_times(j, a, b),
+            }
+        }
+        self.ld.eval_local(base, &d0, &d1)
+    }
+
+    pub(crate) fn derivatives<const N: usize>(&self, base: &[f64; N], z: &SVector<f64, N>) -> ReducedDerivatives<N>
+    where
+        S: System<N>,
+    {
+        let (value, da, db, dadb) = partial_hessian(
+            |(a, b): (SVector<HyperDualSVec64<N, N>, N>, SVector<HyperDualSVec64<N, N>, N>)| {
+                self.lhat(base, &a.into(), &b.into())
+            },
+            (&SVector::zeros(), z),
+        );
+        ReducedDerivatives { value, da, db, dadb }
+    }
+
+    fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
+        self.split.shape.iter().enumerate().map(|(i, &si)| self.connection.entry(j, i) * dx_full[si]).sum()
+    }
+
+    fn kt_mu(&self, i: usize, mu_full: &[f64]) -> f64 {
+        self.split.group.iter().enumerate().map(|(j, &gj)| self.connection.entry(j, i) * mu_full[gj]).sum()
+    }
+}
+
+impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
+    fn base(&self, q: &[f64; N]) -> [f64; N] {
+        let mut base = *q;
+        for &gj in &self.split.group {
+            base[gj] = 0.0;
+        }
+        base
+    }
+
+    fn evaluate(&self, base: &[f64; N], wm: &[f64; N], z: &SVector<f64, N>) -> Evaluation<N> {
+        let d = self.derivatives(base, z);
+        let mut residual = SVector::from(*wm) + d.da;
+        let mut jacobian = d.dadb;
+        let mut momenta_next = *wm;
+        for &si in &self.split.shape {
+            momenta_next[si] = d.db[si];
+        }
+        if self.variant == Variant::Plus {
+            // μ_k − ∂l₊/∂γ = 0
+            for &gj in &self.split.group {
+                residual[gj] = wm[gj] - d.da[gj];
+                jacobian.row_mut(gj).neg_mut();
+            }
+        }
+        Evaluation { residual, jacobian, discrete_energy: d.value, momenta_next }
+    }
+
+    fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {
+        let mut dq: [f64; N] = (*z).into();
+        for (j, &gj) in self.split.group.iter().enumerate() {
+            let gamma = match self.variant {
+                Variant::Plus => z[gj],
+                Variant::Minus => -z[gj],
+            };
+            dq[gj] = gamma + self.k_dx(j, z.as_slice());
+        }
+        dq
+    }
+
+    fn unknowns(&self, dq: &[f64; N]) -> SVector<f64, N> {
+        let mut z = SVector::from(*dq);
+        for (j, &gj) in self.split.group.iter().enumerate() {
+            let gamma = dq[gj] - self.k_dx(j, dq);
+            z[gj] = match self.variant {
+                Variant::Plus => gamma,
+                Variant::Minus => -gamma,
+            };
+        }
+        z
+    }
+
+    fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N] {
+        let mut wm = *p;
+        for (i, &si) in self.split.shape.iter().enumerate() {
+            wm[si] = p[si] + self.kt_mu(i, p);
+        }
+        wm
+    }
+
+    fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
+        let mut p = *wm;
+        for (i, &si) in self.split.shape.iter().enumerate() {
+            p[si] = wm[si] - self.kt_mu(i, wm);
+        }
+        p
+    }
+}

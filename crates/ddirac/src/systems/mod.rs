@@ -1,0 +1,100 @@
+//! Built-in example systems, each with its default parameters, its Lagrangian in the module doc and
+//! the published numbers it must reproduce. Tests, benchmarks and the command line use the same
+//! modules; [`BUILT_IN`] lists them by name for type-erased use.
+
+mod charged_particle;
+mod double_spherical_pendulum;
+mod two_body;
+
+pub use charged_particle::{ChargedParticle, TABLE_1};
+pub use double_spherical_pendulum::DoubleSphericalPendulum;
+pub use two_body::TwoBody;
+
+use crate::{DynSystem, Erased, Error};
+
+/// Named, real-valued parameters of a built-in system.
+pub trait Parameters {
+    /// Names and current values, in a fixed order.
+    fn parameters(&self) -> Vec<(&'static str, f64)>;
+
+    /// Sets one parameter by name; rejects unknown names and invalid values.
+    fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), Error>;
+}
+
+fn finite(name: &str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NonFinite { what: format!("parameter `{name}`"), value })
+    }
+}
+
+fn positive(name: &str, value: f64) -> Result<f64, Error> {
+    if finite(name, value)? > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::Invalid { what: format!("parameter `{name}`"), why: format!("must be positive, got {value}") })
+    }
+}
+
+fn unknown_parameter(name: &str, system: &impl Parameters) -> Error {
+    let known: Vec<&str> = system.parameters().into_iter().map(|(n, _)| n).collect();
+    Error::Invalid { what: format!("parameter `{name}`"), why: format!("unknown; known parameters: {}", known.join(", ")) }
+}
+
+/// A built-in system: its name, a one-line description, and a constructor from parameter overrides.
+#[derive(Debug, Clone, Copy)]
+pub struct BuiltIn {
+    /// Name used in specs (`system = "..."`).
+    pub name: &'static str,
+    /// One line on what it is.
+    pub description: &'static str,
+    /// Default parameters, by name.
+    pub defaults: fn() -> Vec<(&'static str, f64)>,
+    /// Builds the system with some parameters overridden.
+    pub build: fn(&[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>,
+}
+
+fn build<S, const N: usize>(mut system: S, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>
+where
+    S: crate::System<N> + Parameters + Send + Sync + 'static,
+{
+    for (name, value) in overrides {
+        system.set_parameter(name, *value)?;
+    }
+    Ok(Box::new(Erased(system)))
+}
+
+/// The built-in systems.
+pub const BUILT_IN: &[BuiltIn] = &[
+    BuiltIn {
+        name: "charged_particle",
+        description: "charged particle in a constant magnetic field, Kaluza–Klein form (paper §7.1)",
+        defaults: || ChargedParticle::default().parameters(),
+        build: |o| build(ChargedParticle::default(), o),
+    },
+    BuiltIn {
+        name: "double_spherical_pendulum",
+        description: "double spherical pendulum in coordinates (ϑ1, φ1, ϑ2, φ2) (paper §7.2)",
+        defaults: || DoubleSphericalPendulum::default().parameters(),
+        build: |o| build(DoubleSphericalPendulum::default(), o),
+    },
+    BuiltIn {
+        name: "two_body",
+        description: "two bodies in the plane, g = r1, x = r2 − r1 (centre-of-mass connection K ≠ 0)",
+        defaults: || TwoBody::default().parameters(),
+        build: |o| build(TwoBody::default(), o),
+    },
+];
+
+/// The built-in system called `name`.
+///
+/// ```
+/// let cp = ddirac::systems::find("charged_particle").unwrap();
+/// let system = (cp.build)(&[("B0".to_string(), 2.0)]).unwrap();
+/// assert_eq!(system.coordinates().len(), 4);
+/// assert!(ddirac::systems::find("pendulum_on_a_cart").is_none());
+/// ```
+pub fn find(name: &str) -> Option<&'static BuiltIn> {
+    BUILT_IN.iter().find(|b| b.name == name)
+}
