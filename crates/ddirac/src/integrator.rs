@@ -17,7 +17,9 @@ use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::scheme::Scheme;
-use crate::{newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System};
+use crate::{
+    newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
+};
 
 /// The error type an output consumer may return.
 pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
@@ -56,7 +58,9 @@ pub fn integrate<S: System<N>, const N: usize>(
     let q0: [f64; N] = problem.q0.as_slice().try_into().expect("validated size");
     let p0: [f64; N] = match &problem.initial {
         InitialMomentum::Momentum(p) => p.as_slice().try_into().expect("validated size"),
-        InitialMomentum::Velocity(v) => legendre::momentum(system, &q0, &v.as_slice().try_into().expect("validated size")),
+        InitialMomentum::Velocity(v) => {
+            legendre::momentum(system, &q0, &v.as_slice().try_into().expect("validated size"))
+        }
     };
     if let Some((i, &x)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
         return Err(Error::NonFinite { what: format!("initial momentum of `{}`", coordinates[i].name), value: x });
@@ -169,7 +173,13 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 last = Some(e);
                 (e.residual, e.jacobian)
             })
-            .map_err(|f| Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason })?;
+            .map_err(|f| Error::Newton {
+                step: k,
+                t,
+                iterations: f.iterations,
+                residual: f.residual,
+                reason: f.reason,
+            })?;
             let last = last.expect("Newton evaluates at least once");
             let dq = scheme.increment(&z);
             if dq.iter().chain(&last.momenta_next).any(|v| !v.is_finite()) || !last.discrete_energy.is_finite() {
@@ -184,7 +194,15 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 let q = config.output(self.output.wrap_angles);
                 let e = legendre::hamiltonian(self.system, config.base(), &p);
                 energy.push(e);
-                let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: Some(last.discrete_energy), momentum_map: &j };
+                let row = Row {
+                    k,
+                    t,
+                    q: &q,
+                    p: &p,
+                    energy: e,
+                    discrete_energy: Some(last.discrete_energy),
+                    momentum_map: &j,
+                };
                 observer(&row).map_err(Error::Output)?;
             }
 
@@ -200,11 +218,13 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
 
         let final_q = config.output(self.output.wrap_angles).to_vec();
         let final_p = scheme.p_from_momenta(&momenta).to_vec();
-        let reference_error = self.system.exact_solution(&self.q0, &self.p0, self.problem.duration()).and_then(|exact| {
-            let unwrapped = config.unwrapped();
-            let terms: Vec<f64> = exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
-            (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
-        });
+        let reference_error =
+            self.system.exact_solution(&self.q0, &self.p0, self.problem.duration()).and_then(|exact| {
+                let unwrapped = config.unwrapped();
+                let terms: Vec<f64> =
+                    exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+            });
         let j_scale = j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         Ok(Summary {
             coordinates: coordinates.iter().map(|c| c.name.clone()).collect(),

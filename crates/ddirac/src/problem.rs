@@ -46,7 +46,10 @@ impl Problem {
     /// Checks sizes and values against a system with `n` coordinates.
     pub(crate) fn validate(&self, n: usize) -> Result<(), Error> {
         if !(self.step.is_finite() && self.step > 0.0) {
-            return Err(Error::Invalid { what: "step".into(), why: format!("must be positive and finite, got {}", self.step) });
+            return Err(Error::Invalid {
+                what: "step".into(),
+                why: format!("must be positive and finite, got {}", self.step),
+            });
         }
         if self.steps == 0 {
             return Err(Error::Invalid { what: "steps".into(), why: "must be at least 1".into() });

@@ -7,8 +7,9 @@ use ddirac::{solve, Method, OutputOptions, Rule, Variant};
 fn error(steps: usize, reduced: bool, variant: Variant) -> f64 {
     let method = Method { rule: Rule::Left, variant, reduced, ..Method::default() };
     let problem = ChargedParticle::paper_problem(steps);
-    let solution = solve(&ChargedParticle::default(), &problem, &method, &OutputOptions { every: steps, wrap_angles: false })
-        .expect("the paper's run succeeds");
+    let solution =
+        solve(&ChargedParticle::default(), &problem, &method, &OutputOptions { every: steps, wrap_angles: false })
+            .expect("the paper's run succeeds");
     solution.summary.reference_error.expect("the charged particle has an exact solution")
 }
 
@@ -23,7 +24,9 @@ fn assert_matches_printed(computed: f64, printed: f64, digits: i32) {
 
 fn check_row(row: usize) {
     let (steps, printed) = TABLE_1[row];
-    for (reduced, variant) in [(false, Variant::Plus), (false, Variant::Minus), (true, Variant::Plus), (true, Variant::Minus)] {
+    for (reduced, variant) in
+        [(false, Variant::Plus), (false, Variant::Minus), (true, Variant::Plus), (true, Variant::Minus)]
+    {
         let computed = error(steps, reduced, variant);
         let digits = if printed >= 1.0 { 5 } else { 4 };
         assert_matches_printed(computed, printed, digits);

@@ -93,10 +93,7 @@ impl System<4> for ChargedParticle {
             (q0[0] + v[0] * t, q0[1] + v[1] * t)
         } else {
             let (s, c) = (omega * t).sin_cos();
-            (
-                q0[0] + (v[0] * s - v[1] * c + v[1]) / omega,
-                q0[1] + (v[1] * s + v[0] * c - v[0]) / omega,
-            )
+            (q0[0] + (v[0] * s - v[1] * c + v[1]) / omega, q0[1] + (v[1] * s + v[0] * c - v[0]) / omega)
         };
         Some([Some(x), Some(y), Some(q0[2] + v[2] * t), None])
     }

@@ -68,7 +68,8 @@ impl DoubleSphericalPendulum {
     /// ```
     pub fn second_bob(&self, q: &[f64; 4]) -> [f64; 3] {
         let (theta1, theta2) = (q[0] - q[2], q[0] + q[2]);
-        let r = |l: f64, theta: f64, phi: f64| [l * phi.sin() * theta.cos(), l * phi.sin() * theta.sin(), l * phi.cos()];
+        let r =
+            |l: f64, theta: f64, phi: f64| [l * phi.sin() * theta.cos(), l * phi.sin() * theta.sin(), l * phi.cos()];
         let (a, b) = (r(self.l1, theta1, q[1]), r(self.l2, theta2, q[3]));
         [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
     }

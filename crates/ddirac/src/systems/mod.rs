@@ -39,7 +39,10 @@ fn positive(name: &str, value: f64) -> Result<f64, Error> {
 
 fn unknown_parameter(name: &str, system: &impl Parameters) -> Error {
     let known: Vec<&str> = system.parameters().into_iter().map(|(n, _)| n).collect();
-    Error::Invalid { what: format!("parameter `{name}`"), why: format!("unknown; known parameters: {}", known.join(", ")) }
+    Error::Invalid {
+        what: format!("parameter `{name}`"),
+        why: format!("unknown; known parameters: {}", known.join(", ")),
+    }
 }
 
 /// A built-in system: its name, a one-line description, and a constructor from parameter overrides.
