@@ -1,0 +1,201 @@
+//! What a finished run reports: `summary.json` and the short text printed on stdout.
+
+use std::path::Path;
+
+use ddirac::{InitialMomentum, Stats, Summary};
+use serde::Serialize;
+
+use crate::spec::Plan;
+
+/// The content of `summary.json`, in the order it is written.
+#[derive(Serialize)]
+pub struct SummaryJson<'a> {
+    ddirac_version: &'static str,
+    spec: String,
+    system: &'static str,
+    parameters: Parameters<'a>,
+    coordinates: &'a [String],
+    method: MethodJson,
+    steps: usize,
+    step: f64,
+    duration: f64,
+    initial: InitialJson<'a>,
+    output: OutputJson,
+    #[serde(rename = "final")]
+    final_state: FinalJson<'a>,
+    energy: StatsJson,
+    discrete_energy: StatsJson,
+    momentum_map: MomentumMapJson<'a>,
+    newton: NewtonJson,
+    wall_seconds: f64,
+    total_wall_seconds: f64,
+    reference_error: Option<f64>,
+}
+
+/// Parameters as a JSON object `{name: value}`, in the system's order.
+struct Parameters<'a>(&'a [(String, f64)]);
+
+impl Serialize for Parameters<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_map(self.0.iter().map(|(name, value)| (name, value)))
+    }
+}
+
+#[derive(Serialize)]
+struct MethodJson {
+    rule: &'static str,
+    variant: &'static str,
+    reduced: bool,
+    connection: Vec<Vec<f64>>,
+    tolerance: f64,
+    max_iterations: usize,
+    check_invariance: bool,
+}
+
+#[derive(Serialize)]
+struct InitialJson<'a> {
+    q: &'a [f64],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    p: Option<&'a [f64]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    v: Option<&'a [f64]>,
+}
+
+#[derive(Serialize)]
+struct OutputJson {
+    every: usize,
+    wrap_angles: bool,
+}
+
+#[derive(Serialize)]
+struct FinalJson<'a> {
+    q: &'a [f64],
+    p: &'a [f64],
+}
+
+#[derive(Serialize)]
+struct StatsJson {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    initial: Option<f64>,
+    min: f64,
+    max: f64,
+    mean: f64,
+}
+
+impl StatsJson {
+    fn new(s: &Stats, with_initial: bool) -> Self {
+        Self { initial: with_initial.then_some(s.initial), min: s.min, max: s.max, mean: s.mean }
+    }
+}
+
+#[derive(Serialize)]
+struct MomentumMapJson<'a> {
+    initial: &'a [f64],
+    max_drift: f64,
+    max_relative_drift: f64,
+}
+
+#[derive(Serialize)]
+struct NewtonJson {
+    total_iterations: usize,
+    max_iterations: usize,
+    max_residual: f64,
+}
+
+/// The content of `summary.json`.
+pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total_seconds: f64) -> SummaryJson<'a> {
+    let (method, problem) = (&plan.method, &plan.problem);
+    let (p, v) = match &problem.initial {
+        InitialMomentum::Momentum(p) => (Some(p.as_slice()), None),
+        InitialMomentum::Velocity(v) => (None, Some(v.as_slice())),
+    };
+    SummaryJson {
+        ddirac_version: env!("CARGO_PKG_VERSION"),
+        spec: spec.display().to_string(),
+        system: plan.built_in.name,
+        parameters: Parameters(&plan.parameters),
+        coordinates: &summary.coordinates,
+        method: MethodJson {
+            rule: method.rule.name(),
+            variant: method.variant.name(),
+            reduced: method.reduced,
+            connection: connection(plan),
+            tolerance: method.newton.tolerance,
+            max_iterations: method.newton.max_iterations,
+            check_invariance: method.check_invariance,
+        },
+        steps: summary.steps,
+        step: summary.step,
+        duration: summary.step * summary.steps as f64,
+        initial: InitialJson { q: &problem.q0, p, v },
+        output: OutputJson { every: plan.output.every, wrap_angles: plan.output.wrap_angles },
+        final_state: FinalJson { q: &summary.final_q, p: &summary.final_p },
+        energy: StatsJson::new(&summary.energy, true),
+        discrete_energy: StatsJson::new(&summary.discrete_energy, false),
+        momentum_map: MomentumMapJson {
+            initial: &summary.momentum_map.initial,
+            max_drift: summary.momentum_map.max_drift,
+            max_relative_drift: summary.momentum_map.max_relative_drift,
+        },
+        newton: NewtonJson {
+            total_iterations: summary.newton.total_iterations,
+            max_iterations: summary.newton.max_iterations,
+            max_residual: summary.newton.max_residual,
+        },
+        wall_seconds: summary.wall_seconds,
+        total_wall_seconds: total_seconds,
+        reference_error: summary.reference_error,
+    }
+}
+
+/// K as written to the summary: the spec's rows, or zeros of the right shape.
+fn connection(plan: &Plan) -> Vec<Vec<f64>> {
+    plan.method.connection.clone().unwrap_or_else(|| {
+        let coordinates = plan.system.coordinates();
+        let n_x = coordinates.iter().filter(|c| c.role == ddirac::Role::Shape).count();
+        vec![vec![0.0; n_x]; coordinates.len() - n_x]
+    })
+}
+
+/// The short human summary printed after a successful run.
+pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> String {
+    let m = &plan.method;
+    let list = |names: &[String], values: &[f64]| {
+        names.iter().zip(values).map(|(n, v)| format!("{n} = {v:.10}")).collect::<Vec<_>>().join(", ")
+    };
+    let e = &summary.energy;
+    let spread = (e.max - e.min) / e.initial.abs().max(f64::MIN_POSITIVE);
+    let reference = summary.reference_error.map_or("none (no exact solution)".to_owned(), |r| format!("{r:.6e}"));
+    [
+        format!(
+            "{}: {} steps of h = {} (T = {}), rule {}, variant {}, {}",
+            plan.built_in.name,
+            summary.steps,
+            summary.step,
+            summary.step * summary.steps as f64,
+            m.rule.name(),
+            m.variant.name(),
+            if m.reduced { "reduced" } else { "unreduced" }
+        ),
+        format!("  final q          {}", list(&summary.coordinates, &summary.final_q)),
+        format!("  energy           [{:.10e}, {:.10e}] (relative spread {spread:.3e})", e.min, e.max),
+        momentum_map(&summary.momentum_map),
+        format!(
+            "  newton           {} iterations in total, at most {} per step, largest residual {:.3e}",
+            summary.newton.total_iterations, summary.newton.max_iterations, summary.newton.max_residual
+        ),
+        format!("  reference error  {reference}"),
+        format!("  output           {}", dir.display()),
+        format!("  wall time        {:.3} s ({:.3} s integrating)", total_seconds, summary.wall_seconds),
+    ]
+    .join("\n")
+}
+
+/// The momentum-map line; the relative drift is meaningless when J_0 = 0, so it is left out then.
+fn momentum_map(j: &ddirac::diagnostics::MomentumMapDrift) -> String {
+    if j.initial.iter().all(|&v| v == 0.0) {
+        format!("  momentum map     drift {:.3e} (J_0 = 0)", j.max_drift)
+    } else {
+        format!("  momentum map     drift {:.3e} (relative {:.3e})", j.max_drift, j.max_relative_drift)
+    }
+}

@@ -1,0 +1,111 @@
+//! `ddirac run`: reads the spec, applies `--set`, validates, integrates while streaming rows to
+//! `trajectory.csv`, writes `summary.json`, and commits both files only on success.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use ddirac::Role;
+
+use crate::diagnostics::{CliError, SpecSource};
+use crate::output::{self, Trajectory};
+use crate::{overrides, report, spec};
+
+/// Options of `ddirac run`.
+pub struct RunOptions {
+    /// The spec file.
+    pub spec: PathBuf,
+    /// `--out`.
+    pub out: Option<PathBuf>,
+    /// `--set KEY=VALUE` arguments, in order.
+    pub set: Vec<String>,
+    /// `--quiet`.
+    pub quiet: bool,
+}
+
+/// Runs a spec; on success the output directory holds `trajectory.csv` and `summary.json`.
+pub fn run(options: &RunOptions) -> Result<(), CliError> {
+    let started = Instant::now();
+    let path = &options.spec;
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.clone(), source })?;
+    let original = SpecSource::new(path.display().to_string(), text);
+    let source = if options.set.is_empty() {
+        original
+    } else {
+        let edited = overrides::apply(&original, &options.set)?;
+        SpecSource::new(format!("{} (with --set)", path.display()), edited)
+    };
+    let spec = spec::parse(&source)?;
+    let plan = spec::validate(&source, &spec)?;
+
+    let dir = match (&options.out, &plan.directory) {
+        (Some(out), _) => out.clone(),
+        (None, Some(d)) => PathBuf::from(d),
+        (None, None) => {
+            let stem = path.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("out").join(stem)
+        }
+    };
+    let created = !dir.exists();
+    let result = write_run(&source, &plan, path, &dir, started);
+    if result.is_err() && created {
+        let _ = std::fs::remove_dir(&dir);
+    }
+    let summary_text = result?;
+    if !options.quiet {
+        println!("{summary_text}");
+    }
+    Ok(())
+}
+
+/// Integrates and writes both files; returns the human summary.
+fn write_run(
+    source: &SpecSource,
+    plan: &spec::Plan,
+    spec: &Path,
+    dir: &Path,
+    started: Instant,
+) -> Result<String, CliError> {
+    let io = |source| CliError::Output { dir: dir.to_owned(), source };
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let coordinates = plan.system.coordinates();
+    let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
+    let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
+    let mut trajectory = Trajectory::create(dir, &names, &group).map_err(io)?;
+    let summary = plan
+        .system
+        .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| Ok(trajectory.write(row)?))
+        .map_err(|e| library_error(source, plan, dir, e))?;
+    let staged = trajectory.finish().map_err(io)?;
+    let total = started.elapsed().as_secs_f64();
+    let json = report::summary_json(plan, &summary, spec, total);
+    let summary_file = output::json(dir, "summary.json", &json).map_err(io)?;
+    output::commit(vec![staged, summary_file]).map_err(io)?;
+    Ok(report::human(plan, &summary, dir, total))
+}
+
+/// A library error as a diagnostic: pointing at the spec value it concerns when there is one.
+fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddirac::Error) -> CliError {
+    if let ddirac::Error::Output(inner) = error {
+        let source = match inner.downcast::<std::io::Error>() {
+            Ok(io) => *io,
+            Err(other) => std::io::Error::other(other),
+        };
+        return CliError::Output { dir: dir.to_owned(), source };
+    }
+    match plan.spans.locate(&error) {
+        Some((span, label)) => {
+            let help = match error {
+                ddirac::Error::NotInvariant { .. } => Some(
+                    "run the unreduced equations (`reduced = false`) or skip the check (`check_invariance = false`)",
+                ),
+                _ => None,
+            };
+            let mut e = source.error(Some(span), error.to_string(), label);
+            if let Some(help) = help {
+                e = e.with_help(help);
+            }
+            e.into()
+        }
+        None => CliError::Integration(error),
+    }
+}
