@@ -92,7 +92,7 @@ impl StatsJson {
 struct MomentumMapJson<'a> {
     initial: &'a [f64],
     max_drift: f64,
-    max_relative_drift: f64,
+    max_relative_drift: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -191,11 +191,10 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
     .join("\n")
 }
 
-/// The momentum-map line; the relative drift is meaningless when J_0 = 0, so it is left out then.
+/// The momentum-map line; the relative drift is undefined when J_0 = 0, so it is left out then.
 fn momentum_map(j: &ddirac::diagnostics::MomentumMapDrift) -> String {
-    if j.initial.iter().all(|&v| v == 0.0) {
-        format!("  momentum map     drift {:.3e} (J_0 = 0)", j.max_drift)
-    } else {
-        format!("  momentum map     drift {:.3e} (relative {:.3e})", j.max_drift, j.max_relative_drift)
+    match j.max_relative_drift {
+        Some(relative) => format!("  momentum map     drift {:.3e} (relative {relative:.3e})", j.max_drift),
+        None => format!("  momentum map     drift {:.3e} (J_0 = 0)", j.max_drift),
     }
 }

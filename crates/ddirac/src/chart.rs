@@ -53,13 +53,13 @@ impl<const N: usize> Configuration<N> {
 
     /// Moves by the increments `dq`, re-centring each angle's chart.
     pub fn advance(&mut self, dq: &[f64; N]) {
-        for i in 0..N {
-            let moved = self.base[i] + dq[i];
-            self.base[i] = match self.kinds[i] {
+        for (((base, turns), kind), d) in self.base.iter_mut().zip(&mut self.turns).zip(&self.kinds).zip(dq) {
+            let moved = *base + d;
+            *base = match kind {
                 CoordinateKind::Real => moved,
                 CoordinateKind::Angle => {
                     let wrapped = wrap(moved);
-                    self.turns[i] += ((moved - wrapped) / TAU).round() as i64;
+                    *turns += ((moved - wrapped) / TAU).round() as i64;
                     wrapped
                 }
             };

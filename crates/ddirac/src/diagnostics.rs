@@ -75,8 +75,8 @@ pub struct MomentumMapDrift {
     pub initial: Vec<f64>,
     /// max_k ‖J_k − J_0‖∞ over all steps.
     pub max_drift: f64,
-    /// `max_drift / max(‖J_0‖∞, tiny)`.
-    pub max_relative_drift: f64,
+    /// `max_drift / ‖J_0‖∞`; `None` when J_0 = 0.
+    pub max_relative_drift: Option<f64>,
 }
 
 /// Newton statistics over all steps.

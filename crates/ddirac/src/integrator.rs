@@ -237,7 +237,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             momentum_map: MomentumMapDrift {
                 initial: j0,
                 max_drift,
-                max_relative_drift: max_drift / j_scale.max(f64::MIN_POSITIVE),
+                max_relative_drift: (j_scale > 0.0).then(|| max_drift / j_scale),
             },
             newton: newton_summary,
             wall_seconds: started.elapsed().as_secs_f64(),

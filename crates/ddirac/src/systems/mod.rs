@@ -45,6 +45,9 @@ fn unknown_parameter(name: &str, system: &impl Parameters) -> Error {
     }
 }
 
+/// Builds a built-in system from parameter overrides `(name, value)`.
+pub type Builder = fn(&[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>;
+
 /// A built-in system: its name, a one-line description, and a constructor from parameter overrides.
 #[derive(Debug, Clone, Copy)]
 pub struct BuiltIn {
@@ -55,7 +58,7 @@ pub struct BuiltIn {
     /// Default parameters, by name.
     pub defaults: fn() -> Vec<(&'static str, f64)>,
     /// Builds the system with some parameters overridden.
-    pub build: fn(&[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>,
+    pub build: Builder,
 }
 
 fn build<S, const N: usize>(mut system: S, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>
