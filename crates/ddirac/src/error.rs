@@ -7,7 +7,7 @@ use crate::newton::FailureReason;
 #[non_exhaustive]
 pub enum Error {
     /// A vector or matrix has the wrong number of entries.
-    #[error("{what} has {found} entries, but the system has {expected}")]
+    #[error("{what} has {found} entries, but the system has {expected} coordinates")]
     Size {
         /// What was given.
         what: String,
@@ -34,7 +34,7 @@ pub enum Error {
     },
     /// Newton's method failed on a step.
     #[error(
-        "step {step} (t = {t}): Newton's method {reason} after {iterations} iterations \
+        "step {step} (t = {t}): Newton's method failed after {iterations} iteration(s): {reason} \
          (residual {residual:.3e}); try a smaller step or a looser tolerance"
     )]
     Newton {

@@ -50,7 +50,7 @@ pub enum FailureReason {
 impl std::fmt::Display for FailureReason {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            FailureReason::NotConverged => "did not converge",
+            FailureReason::NotConverged => "no convergence within the iteration limit",
             FailureReason::SingularJacobian => "the Jacobian is singular",
             FailureReason::NonFinite => "a non-finite value appeared in the residual or Jacobian",
         })
