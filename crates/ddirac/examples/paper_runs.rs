@@ -10,7 +10,8 @@ fn main() -> Result<(), Error> {
     for (steps, printed) in TABLE_1 {
         let run = |reduced| -> Result<f64, Error> {
             let method = Method { rule: Rule::Left, reduced, ..Method::default() };
-            let s = solve(&ChargedParticle::default(), &ChargedParticle::paper_problem(steps), &method, &last_only(steps))?;
+            let s =
+                solve(&ChargedParticle::default(), &ChargedParticle::paper_problem(steps), &method, &last_only(steps))?;
             Ok(s.summary.reference_error.unwrap_or(f64::NAN))
         };
         println!("{steps:>5}  {:.6}  {:.6}  {printed}", run(true)?, run(false)?);
