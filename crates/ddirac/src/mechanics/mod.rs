@@ -4,3 +4,4 @@
 pub(crate) mod dirac;
 pub mod discrete_lagrangian;
 pub mod legendre;
+pub mod pontryagin;

@@ -2,5 +2,7 @@
 //! hypothesis and the reduced (+) and (−) equations with reconstruction.
 
 pub mod connection;
+pub mod dirac_structure;
 pub mod invariance;
 pub(crate) mod reduced;
+pub mod trivialization;
