@@ -277,7 +277,10 @@ fn newton_failures_leave_earlier_finished_files_untouched() {
     let output = run(CHARGED_PARTICLE, &["method.max_iterations=1", "method.tolerance=1e-16"], &dir);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success());
-    assert!(stderr.contains("Newton's method failed after 1 iteration(s): no convergence within the iteration limit"), "{stderr}");
+    assert!(
+        stderr.contains("Newton's method failed after 1 iteration(s): no convergence within the iteration limit"),
+        "{stderr}"
+    );
     assert_eq!(std::fs::read_to_string(dir.out().join("trajectory.csv")).unwrap(), finished);
     assert_eq!(std::fs::read(dir.out().join("summary.json")).unwrap(), finished_summary);
     assert!(!dir.out().join(".trajectory.csv.partial").exists());
