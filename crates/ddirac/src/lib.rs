@@ -23,6 +23,7 @@ pub mod chart;
 pub mod diagnostics;
 mod erased;
 mod error;
+pub mod expression;
 mod integrator;
 mod linalg;
 pub mod mechanics;

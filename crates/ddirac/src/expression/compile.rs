@@ -1,0 +1,248 @@
+//! Name resolution against a [`Scope`] and lowering of the syntax tree to the operation graph.
+
+use std::collections::HashMap;
+
+use super::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
+use super::functions::{Binary, Function, Unary, FUNCTIONS};
+use super::graph::{Graph, Operand};
+use super::{emit, parse, CycleStep, ExpressionError, Origin, Program, Span};
+
+/// What a name stands for.
+#[derive(Debug, Clone, PartialEq)]
+enum Entry {
+    Variable(usize),
+    Constant(f64),
+    Definition(String),
+    Unavailable(String),
+}
+
+/// The names an expression may use: variables (in the order of the values given to
+/// [`Program::eval`]), constants, definitions and names reserved with a reason.
+///
+/// Names should be distinct; when one is declared twice, the later declaration wins (the variable
+/// count still includes every variable declared).
+///
+/// ```
+/// use ddirac::expression::{ExpressionError, Scope};
+/// let scope = Scope::new().variable("x").constant("k", 3.0).definition("f", "k*x^2").unavailable("t", "no time");
+/// assert_eq!(scope.compile_expression("f/2").unwrap().eval(&[2.0]), 6.0);
+/// assert!(matches!(scope.compile_expression("t"), Err(ExpressionError::Unavailable { .. })));
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct Scope {
+    entries: HashMap<String, Entry>,
+    /// Declaration order, for deterministic suggestions and definition checks.
+    order: Vec<String>,
+    variables: usize,
+}
+
+impl Scope {
+    /// A scope with no names.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn declare(mut self, name: &str, entry: Entry) -> Self {
+        if self.entries.insert(name.to_owned(), entry).is_none() {
+            self.order.push(name.to_owned());
+        }
+        self
+    }
+
+    /// Adds the next variable.
+    pub fn variable(mut self, name: &str) -> Self {
+        self.variables += 1;
+        let index = self.variables - 1;
+        self.declare(name, Entry::Variable(index))
+    }
+
+    /// Adds a named constant.
+    pub fn constant(self, name: &str, value: f64) -> Self {
+        self.declare(name, Entry::Constant(value))
+    }
+
+    /// Adds a named definition: an expression that may use every name of the scope, including other
+    /// definitions, as long as no definition depends on itself.
+    pub fn definition(self, name: &str, source: &str) -> Self {
+        self.declare(name, Entry::Definition(source.to_owned()))
+    }
+
+    /// Reserves a name that expressions in this scope may not use, with the reason given in the error.
+    pub fn unavailable(self, name: &str, reason: &str) -> Self {
+        self.declare(name, Entry::Unavailable(reason.to_owned()))
+    }
+
+    /// Number of variables.
+    pub fn variables(&self) -> usize {
+        self.variables
+    }
+
+    /// Compiles `source`, reporting its errors as belonging to `origin` (errors inside a definition
+    /// are reported with [`Origin::Definition`]). Every definition of the scope is checked, whether
+    /// the expression uses it or not.
+    pub fn compile(&self, origin: Origin, source: &str) -> Result<Program, ExpressionError> {
+        let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
+        let mut compiler = Compiler { scope: self, graph: Graph::default(), done: HashMap::new(), stack: Vec::new() };
+        for name in &self.order {
+            if let Some(Entry::Definition(source)) = self.entries.get(name) {
+                compiler.definition(name, source, None)?;
+            }
+        }
+        let result = compiler.lower(&expr, &origin)?;
+        Ok(emit::program(&compiler.graph.nodes, result, self.variables))
+    }
+
+    /// Compiles a standalone expression ([`Origin::Expression`]).
+    pub fn compile_expression(&self, source: &str) -> Result<Program, ExpressionError> {
+        self.compile(Origin::Expression, source)
+    }
+}
+
+struct Compiler<'s> {
+    scope: &'s Scope,
+    graph: Graph,
+    /// Definitions already lowered.
+    done: HashMap<&'s str, Operand>,
+    /// Definitions being lowered, outermost first, each with the reference that led to it.
+    stack: Vec<(&'s str, Option<CycleStep>)>,
+}
+
+impl<'s> Compiler<'s> {
+    fn definition(
+        &mut self,
+        name: &'s str,
+        source: &'s str,
+        reference: Option<CycleStep>,
+    ) -> Result<Operand, ExpressionError> {
+        if let Some(&operand) = self.done.get(name) {
+            return Ok(operand);
+        }
+        if let Some(start) = self.stack.iter().position(|(n, _)| *n == name) {
+            let cycle: Vec<CycleStep> =
+                self.stack[start + 1..].iter().filter_map(|(_, r)| r.clone()).chain(reference).collect();
+            let (origin, span) = match cycle.last() {
+                Some(last) => (last.origin.clone(), last.span),
+                None => (Origin::Definition(name.to_owned()), Span::default()),
+            };
+            return Err(ExpressionError::Cycle { origin, span, cycle });
+        }
+        let origin = Origin::Definition(name.to_owned());
+        let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
+        self.stack.push((name, reference));
+        let operand = self.lower(&expr, &origin)?;
+        self.stack.pop();
+        self.done.insert(name, operand);
+        Ok(operand)
+    }
+
+    fn lower(&mut self, expr: &Expr, origin: &Origin) -> Result<Operand, ExpressionError> {
+        Ok(match &expr.kind {
+            ExprKind::Number(value) => Operand::Const(*value),
+            ExprKind::Name(name) => self.name(name, expr.span, origin)?,
+            ExprKind::Unary { op, operand } => {
+                let operand = self.lower(operand, origin)?;
+                match op {
+                    UnaryOp::Neg => self.graph.unary(Unary::Neg, operand),
+                    UnaryOp::Plus => operand,
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (a, b) = (self.lower(lhs, origin)?, self.lower(rhs, origin)?);
+                let op = match op {
+                    BinaryOp::Add => Binary::Add,
+                    BinaryOp::Sub => Binary::Sub,
+                    BinaryOp::Mul => Binary::Mul,
+                    BinaryOp::Div => Binary::Div,
+                    BinaryOp::Pow => Binary::Pow,
+                };
+                self.graph.binary(op, a, b)
+            }
+            ExprKind::Call { name, name_span, args } => {
+                let Some(function) = Function::named(name) else {
+                    let origin = origin.clone();
+                    if self.scope.entries.contains_key(name.as_str()) {
+                        return Err(ExpressionError::NotAFunction { origin, span: *name_span, name: name.clone() });
+                    }
+                    let suggestion = closest(name, FUNCTIONS.iter().copied());
+                    return Err(ExpressionError::UnknownFunction {
+                        origin,
+                        span: *name_span,
+                        name: name.clone(),
+                        suggestion,
+                    });
+                };
+                if args.len() != function.arity() {
+                    return Err(ExpressionError::Arity {
+                        origin: origin.clone(),
+                        span: expr.span,
+                        function: name.clone(),
+                        expected: function.arity(),
+                        found: args.len(),
+                    });
+                }
+                let args = args.iter().map(|arg| self.lower(arg, origin)).collect::<Result<Vec<_>, _>>()?;
+                match function {
+                    Function::Unary(op) => self.graph.unary(op, args[0]),
+                    Function::Binary(op) => self.graph.binary(op, args[0], args[1]),
+                }
+            }
+        })
+    }
+
+    fn name(&mut self, name: &str, span: Span, origin: &Origin) -> Result<Operand, ExpressionError> {
+        let scope = self.scope;
+        match scope.entries.get_key_value(name) {
+            Some((_, Entry::Variable(index))) => Ok(self.graph.var(*index)),
+            Some((_, Entry::Constant(value))) => Ok(Operand::Const(*value)),
+            Some((key, Entry::Definition(source))) => {
+                let reference = CycleStep { origin: origin.clone(), name: name.to_owned(), span };
+                self.definition(key, source, Some(reference))
+            }
+            Some((_, Entry::Unavailable(reason))) => Err(ExpressionError::Unavailable {
+                origin: origin.clone(),
+                span,
+                name: name.to_owned(),
+                reason: reason.clone(),
+            }),
+            None if Function::named(name).is_some() => {
+                Err(ExpressionError::FunctionWithoutCall { origin: origin.clone(), span, name: name.to_owned() })
+            }
+            None => {
+                let known = scope
+                    .order
+                    .iter()
+                    .filter(|n| !matches!(scope.entries.get(n.as_str()), Some(Entry::Unavailable(_))))
+                    .map(String::as_str);
+                let suggestion = closest(name, known);
+                Err(ExpressionError::UnknownName { origin: origin.clone(), span, name: name.to_owned(), suggestion })
+            }
+        }
+    }
+}
+
+/// The candidate closest to `name` by edit distance, if it is within a third of the name's length
+/// (at least one edit).
+pub(super) fn closest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<String> {
+    let limit = (name.chars().count() / 3).max(1);
+    candidates
+        .map(|c| (edit_distance(name, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c.to_owned())
+}
+
+/// Levenshtein distance, counting in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (row[j + 1] + 1).min(row[j] + 1).min(diagonal + usize::from(ca != cb));
+            diagonal = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}

@@ -1,0 +1,230 @@
+//! A [`System`] whose Lagrangian is given as text.
+//!
+//! The Lagrangian L(q, q̇) is an expression in the coordinates `q_i` (by name), their velocities
+//! `<name>_dot`, the parameters and the definitions (named expressions, which may use all of these and
+//! each other). A Lagrangian is autonomous: `t` is reserved and not available in it. Exact solutions,
+//! if given, are expressions in `t` and the parameters only: the initial data q0, p0 of the problem
+//! are *not* available in them, so an exact solution holds for one problem's initial data and must be
+//! written for it.
+
+use super::compile::closest;
+use super::{ExpressionError, Origin, Program, Scope, FUNCTIONS};
+use crate::{Coordinate, DynSystem, Erased, System};
+
+/// The largest number of coordinates [`ExpressionSpec::into_dyn`] supports.
+pub const MAX_DYN_COORDINATES: usize = 16;
+
+/// The text of a system: coordinates, Lagrangian, definitions, parameters and exact solutions, as a
+/// spec file gives them.
+///
+/// ```
+/// use ddirac::expression::ExpressionSpec;
+/// use ddirac::Coordinate;
+/// // A pendulum of length l: L = ½ m l² φ̇² + m g l cos φ.
+/// let spec = ExpressionSpec {
+///     coordinates: vec![Coordinate::shape("phi").angle()],
+///     lagrangian: "0.5*m*l^2*phi_dot^2 + m*g*l*cos(phi)".into(),
+///     parameters: vec![("m".into(), 1.0), ("l".into(), 2.0), ("g".into(), 9.8)],
+///     ..ExpressionSpec::default()
+/// };
+/// let system = spec.into_dyn().unwrap();
+/// assert_eq!(system.coordinates()[0].name, "phi");
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ExpressionSpec {
+    /// The coordinates, in order; each `name` also declares the velocity `name_dot`.
+    pub coordinates: Vec<Coordinate>,
+    /// The Lagrangian.
+    pub lagrangian: String,
+    /// Definitions, name → source.
+    pub definitions: Vec<(String, String)>,
+    /// Parameters, name → value.
+    pub parameters: Vec<(String, f64)>,
+    /// Exact solutions, coordinate name → expression in `t` and the parameters.
+    pub exact_solution: Vec<(String, String)>,
+}
+
+/// A system with `N` coordinates whose Lagrangian is compiled from an [`ExpressionSpec`].
+///
+/// It is a [`System<N>`] for exactly the `N` it was built with: [`ExpressionSystem::new`] checks
+/// that the spec has `N` coordinates, so it can be wrapped as `Erased::<_, N>` only for that `N`.
+/// [`ExpressionSpec::into_dyn`] chooses `N` from the coordinate count.
+///
+/// ```
+/// use ddirac::expression::{ExpressionError, ExpressionSpec, ExpressionSystem};
+/// use ddirac::{Coordinate, System};
+/// let spec = ExpressionSpec {
+///     coordinates: vec![Coordinate::group("x")],
+///     lagrangian: "0.5*m*x_dot^2".into(),
+///     parameters: vec![("m".into(), 2.0)],
+///     exact_solution: vec![("x".into(), "3*t".into())],
+///     ..ExpressionSpec::default()
+/// };
+/// let system = ExpressionSystem::<1>::new(&spec).unwrap();
+/// assert_eq!(system.lagrangian(&[0.0], &[3.0]), 9.0);
+/// assert_eq!(system.exact_solution(&[0.0], &[6.0], 2.0), Some([Some(6.0)]));
+/// assert!(matches!(ExpressionSystem::<2>::new(&spec), Err(ExpressionError::Dimension { .. })));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpressionSystem<const N: usize> {
+    coordinates: [Coordinate; N],
+    lagrangian: Program,
+    exact: Vec<Option<Program>>,
+}
+
+/// A checked and compiled spec, before its dimension is fixed.
+struct Compiled {
+    coordinates: Vec<Coordinate>,
+    lagrangian: Program,
+    exact: Vec<Option<Program>>,
+}
+
+impl<const N: usize> ExpressionSystem<N> {
+    /// Checks and compiles `spec`, which must have `N` coordinates.
+    pub fn new(spec: &ExpressionSpec) -> Result<Self, ExpressionError> {
+        if spec.coordinates.len() != N {
+            return Err(ExpressionError::Dimension { expected: N, found: spec.coordinates.len() });
+        }
+        Self::from_compiled(compile(spec)?)
+    }
+
+    fn from_compiled(compiled: Compiled) -> Result<Self, ExpressionError> {
+        let found = compiled.coordinates.len();
+        let coordinates =
+            compiled.coordinates.try_into().map_err(|_| ExpressionError::Dimension { expected: N, found })?;
+        Ok(Self { coordinates, lagrangian: compiled.lagrangian, exact: compiled.exact })
+    }
+
+    /// The compiled Lagrangian; its variables are q_0 … q_{N−1}, then their velocities.
+    pub fn lagrangian_program(&self) -> &Program {
+        &self.lagrangian
+    }
+}
+
+impl<const N: usize> System<N> for ExpressionSystem<N> {
+    fn coordinates(&self) -> [Coordinate; N] {
+        self.coordinates.clone()
+    }
+
+    fn lagrangian<D: num_dual::DualNum<Primitive = f64> + Copy>(&self, q: &[D; N], v: &[D; N]) -> D {
+        self.lagrangian.eval_with(|i| if i < N { q[i] } else { v[i - N] })
+    }
+
+    /// The given exact solutions at `t`; `q0` and `p0` are not used (see the module documentation).
+    fn exact_solution(&self, _q0: &[f64; N], _p0: &[f64; N], t: f64) -> Option<[Option<f64>; N]> {
+        if self.exact.iter().all(Option::is_none) {
+            return None;
+        }
+        Some(std::array::from_fn(|i| self.exact[i].as_ref().map(|program| program.eval(&[t]))))
+    }
+}
+
+impl ExpressionSpec {
+    /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares
+    /// (at most [`MAX_DYN_COORDINATES`]).
+    pub fn into_dyn(self) -> Result<Box<dyn DynSystem>, ExpressionError> {
+        let compiled = compile(&self)?;
+        macro_rules! dispatch {
+            ($($n:literal)*) => {
+                match compiled.coordinates.len() {
+                    $($n => Ok(Box::new(Erased::<_, $n>(ExpressionSystem::<$n>::from_compiled(compiled)?))),)*
+                    found => Err(ExpressionError::TooManyCoordinates { found, limit: MAX_DYN_COORDINATES }),
+                }
+            };
+        }
+        dispatch!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+    }
+}
+
+fn velocity(name: &str) -> String {
+    format!("{name}_dot")
+}
+
+fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
+    check_names(spec)?;
+    let names = || spec.coordinates.iter().map(|c| c.name.clone());
+    let mut lagrangian = Scope::new();
+    let mut exact = Scope::new().variable("t");
+    for name in names().chain(names().map(|n| velocity(&n))) {
+        lagrangian = lagrangian.variable(&name);
+        exact = exact.unavailable(&name, "an exact solution depends on `t` and the parameters only");
+    }
+    lagrangian = lagrangian.unavailable("t", "a Lagrangian does not depend on time (`t` is for exact solutions)");
+    for (name, value) in &spec.parameters {
+        lagrangian = lagrangian.constant(name, *value);
+        exact = exact.constant(name, *value);
+    }
+    for (name, source) in &spec.definitions {
+        lagrangian = lagrangian.definition(name, source);
+        exact = exact.unavailable(name, "definitions are not available in exact solutions");
+    }
+    let lagrangian = lagrangian.compile(Origin::Lagrangian, &spec.lagrangian)?;
+
+    let mut solutions: Vec<Option<Program>> = vec![None; spec.coordinates.len()];
+    for (name, source) in &spec.exact_solution {
+        let origin = Origin::ExactSolution(name.clone());
+        let Some(i) = spec.coordinates.iter().position(|c| &c.name == name) else {
+            let suggestion = closest(name, spec.coordinates.iter().map(|c| c.name.as_str()));
+            return Err(ExpressionError::UnknownCoordinate { origin, name: name.clone(), suggestion });
+        };
+        if solutions[i].is_some() {
+            let what = format!("an exact solution for `{name}`");
+            return Err(ExpressionError::DuplicateName {
+                origin,
+                name: name.clone(),
+                first: what.clone(),
+                second: what,
+            });
+        }
+        solutions[i] = Some(exact.compile(origin, source)?);
+    }
+    Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, exact: solutions })
+}
+
+/// Checks that every declared name is an identifier, not a function, and declared once.
+fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
+    if spec.coordinates.is_empty() {
+        return Err(ExpressionError::NoCoordinates);
+    }
+    let mut declared: Vec<(String, String)> = vec![("t".into(), "the time `t` (reserved)".into())];
+    let mut declare = |name: &str, what: String, origin: Origin| {
+        let invalid = |reason: &str| ExpressionError::InvalidName {
+            origin: origin.clone(),
+            name: name.to_owned(),
+            reason: reason.to_owned(),
+        };
+        let mut chars = name.chars();
+        let identifier = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !identifier {
+            return Err(invalid("a name is a letter or `_` followed by letters, digits and `_`"));
+        }
+        if FUNCTIONS.contains(&name) {
+            return Err(invalid("it is the name of a function"));
+        }
+        if let Some((_, first)) = declared.iter().find(|(n, _)| n == name) {
+            let (name, first) = (name.to_owned(), first.clone());
+            return Err(ExpressionError::DuplicateName { origin, name, first, second: what });
+        }
+        declared.push((name.to_owned(), what));
+        Ok(())
+    };
+    for c in &spec.coordinates {
+        declare(&c.name, format!("coordinate `{}`", c.name), Origin::Coordinate(c.name.clone()))?;
+    }
+    for c in &spec.coordinates {
+        let what = format!("the velocity of coordinate `{}`", c.name);
+        declare(&velocity(&c.name), what, Origin::Coordinate(c.name.clone()))?;
+    }
+    for (name, value) in &spec.parameters {
+        let origin = Origin::Parameter(name.clone());
+        declare(name, format!("parameter `{name}`"), origin.clone())?;
+        if !value.is_finite() {
+            return Err(ExpressionError::NonFinite { origin, value: *value });
+        }
+    }
+    for (name, _) in &spec.definitions {
+        declare(name, format!("definition `{name}`"), Origin::Definition(name.clone()))?;
+    }
+    Ok(())
+}
