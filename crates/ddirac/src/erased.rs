@@ -3,7 +3,7 @@
 
 use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
-use crate::{Coordinate, Error, Method, OutputOptions, Problem, System};
+use crate::{CheckReport, Coordinate, Error, Method, OutputOptions, Problem, System};
 
 /// A system whose type and dimension are erased.
 pub trait DynSystem: Send + Sync {
@@ -18,6 +18,9 @@ pub trait DynSystem: Send + Sync {
         output: &OutputOptions,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error>;
+
+    /// Checks a problem without integrating; see [`crate::check`].
+    fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error>;
 }
 
 /// Wraps a system with `N` coordinates as a [`DynSystem`].
@@ -43,5 +46,9 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
         crate::integrate(&self.0, problem, method, output, observer)
+    }
+
+    fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {
+        crate::check(&self.0, problem, method)
     }
 }

@@ -49,42 +49,60 @@ pub fn integrate<S: System<N>, const N: usize>(
     output: &OutputOptions,
     observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
 ) -> Result<Summary, Error> {
-    problem.validate(N)?;
     if output.every == 0 {
         return Err(Error::Invalid { what: "output.every".into(), why: "must be at least 1".into() });
     }
-    let coordinates = system.coordinates();
-    let split = Split::new(&coordinates);
-    let q0: [f64; N] = problem.q0.as_slice().try_into().expect("validated size");
-    let p0: [f64; N] = match &problem.initial {
-        InitialMomentum::Momentum(p) => p.as_slice().try_into().expect("validated size"),
-        InitialMomentum::Velocity(v) => {
-            legendre::momentum(system, &q0, &v.as_slice().try_into().expect("validated size"))
-        }
-    };
-    if let Some((i, &x)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-        return Err(Error::NonFinite { what: format!("initial momentum of `{}`", coordinates[i].name), value: x });
-    }
-    let connection = match &method.connection {
-        Some(rows) => Connection::new(rows, split.n_x(), split.n_g())?,
-        None => Connection::zero(split.n_x(), split.n_g()),
-    };
-    connection.check_axioms()?;
+    let setup = Setup::new(system, problem, method)?;
     let ld = DiscreteLagrangian::new(system, method.rule, problem.step);
-    let (v0, _) = legendre::velocity(system, &q0, &p0);
-    let dq0: [f64; N] = std::array::from_fn(|i| if v0[i].is_finite() { v0[i] * problem.step } else { 0.0 });
-    let run = Run { system, problem, output, split: &split, q0, p0, dq0 };
+    let run = Run { system, problem, output, setup: &setup };
     if method.reduced {
-        if split.n_g() == 0 {
+        if setup.split.n_g() == 0 {
             return Err(Error::NoSymmetry);
         }
         if method.check_invariance {
-            check_invariance(&ld, &split, &q0, &dq0)?;
+            check_invariance(&ld, &setup.split, &setup.q0, &setup.dq0)?;
         }
-        let scheme = LagrangePoincareDirac { ld, connection: &connection, split: &split, variant: method.variant };
+        let scheme =
+            LagrangePoincareDirac { ld, connection: &setup.connection, split: &setup.split, variant: method.variant };
         run.go(&scheme, method, observer)
     } else {
         run.go(&LagrangeDirac { ld }, method, observer)
+    }
+}
+
+/// What a run needs before its first step: validated initial data, the split, the connection and a
+/// first-step increment h · v0 for the predictor.
+pub(crate) struct Setup<const N: usize> {
+    pub split: Split,
+    pub q0: [f64; N],
+    pub p0: [f64; N],
+    /// h · v0 with v0 from the inverse Legendre transform (0 where it is not finite).
+    pub dq0: [f64; N],
+    pub connection: Connection,
+}
+
+impl<const N: usize> Setup<N> {
+    pub(crate) fn new<S: System<N>>(system: &S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        problem.validate(N)?;
+        let coordinates = system.coordinates();
+        let split = Split::new(&coordinates);
+        let sized = |v: &[f64]| -> [f64; N] { v.try_into().expect("validated size") };
+        let q0 = sized(&problem.q0);
+        let p0 = match &problem.initial {
+            InitialMomentum::Momentum(p) => sized(p),
+            InitialMomentum::Velocity(v) => legendre::momentum(system, &q0, &sized(v)),
+        };
+        if let Some((i, &x)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(Error::NonFinite { what: format!("initial momentum of `{}`", coordinates[i].name), value: x });
+        }
+        let connection = match &method.connection {
+            Some(rows) => Connection::new(rows, split.n_x(), split.n_g())?,
+            None => Connection::zero(split.n_x(), split.n_g()),
+        };
+        connection.check_axioms()?;
+        let (v0, _) = legendre::velocity(system, &q0, &p0);
+        let dq0 = std::array::from_fn(|i| if v0[i].is_finite() { v0[i] * problem.step } else { 0.0 });
+        Ok(Self { split, q0, p0, dq0, connection })
     }
 }
 
@@ -122,10 +140,7 @@ struct Run<'a, S, const N: usize> {
     system: &'a S,
     problem: &'a Problem,
     output: &'a OutputOptions,
-    split: &'a Split,
-    q0: [f64; N],
-    p0: [f64; N],
-    dq0: [f64; N],
+    setup: &'a Setup<N>,
 }
 
 impl<S: System<N>, const N: usize> Run<'_, S, N> {
@@ -136,14 +151,14 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
         let started = Instant::now();
-        let (h, steps, split) = (self.problem.step, self.problem.steps, self.split);
+        let (h, steps, split) = (self.problem.step, self.problem.steps, &self.setup.split);
         let coordinates = self.system.coordinates();
         let kinds = coordinates.each_ref().map(|c| c.kind);
-        let mut config = Configuration::new(self.q0, kinds);
-        let mut momenta = scheme.momenta_from_p(&self.p0);
-        let j0 = split.g(&self.p0);
+        let mut config = Configuration::new(self.setup.q0, kinds);
+        let mut momenta = scheme.momenta_from_p(&self.setup.p0);
+        let j0 = split.g(&self.setup.p0);
         let mut z_prev: Option<SVector<f64, N>> = None;
-        let mut z = scheme.unknowns(&self.dq0);
+        let mut z = scheme.unknowns(&self.setup.dq0);
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
         let mut max_drift = 0.0f64;
@@ -219,7 +234,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let final_q = config.output(self.output.wrap_angles).to_vec();
         let final_p = scheme.p_from_momenta(&momenta).to_vec();
         let reference_error =
-            self.system.exact_solution(&self.q0, &self.p0, self.problem.duration()).and_then(|exact| {
+            self.system.exact_solution(&self.setup.q0, &self.setup.p0, self.problem.duration()).and_then(|exact| {
                 let unwrapped = config.unwrapped();
                 let terms: Vec<f64> =
                     exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();

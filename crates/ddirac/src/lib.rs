@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod chart;
+mod check;
 pub mod diagnostics;
 mod erased;
 mod error;
@@ -34,6 +35,7 @@ mod scheme;
 mod system;
 pub mod systems;
 
+pub use check::{check, CheckReport, CONSTRAINT_TOLERANCE};
 pub use diagnostics::{Row, Solution, Stats, Summary};
 pub use erased::{DynSystem, Erased};
 pub use error::Error;

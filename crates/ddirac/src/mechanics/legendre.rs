@@ -27,10 +27,16 @@ pub fn momentum<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64
     p.into()
 }
 
-/// Whether ∂²L/∂v² is invertible at (q, v) (no pivot below 10⁻¹⁰ of its largest entry).
-pub fn is_regular<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> bool {
+/// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
+/// Lagrangian is linear in the velocities.
+pub fn rank<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> usize {
     let hess = velocity_hessian(system, q, v).2;
-    matches!(crate::linalg::solve(hess, SVector::zeros(), 1e-10), Some((_, rank)) if rank == N)
+    crate::linalg::solve(hess, SVector::zeros(), 1e-10).map_or(0, |(_, rank)| rank)
+}
+
+/// Whether the Legendre transform is regular at (q, v): ∂²L/∂v² has full rank.
+pub fn is_regular<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> bool {
+    rank(system, q, v) == N
 }
 
 fn velocity_hessian<S: System<N>, const N: usize>(

@@ -9,15 +9,14 @@ use crate::{DiscreteLagrangian, Error, Split, System};
 /// Relative tolerance of [`check_invariance`].
 pub const INVARIANCE_TOLERANCE: f64 = 1e-9;
 
-/// Checks that L_d is invariant under translation of each group coordinate, near `q` with
-/// increments of the size `dq`. Names the first group coordinate that breaks it.
-pub fn check_invariance<S: System<N>, const N: usize>(
+/// The largest relative change of L_d under translations of each group coordinate alone, sampled
+/// near `q` with increments of the size `dq`: one `(coordinate index, deviation)` per group coordinate.
+pub fn invariance_deviations<S: System<N>, const N: usize>(
     ld: &DiscreteLagrangian<'_, S>,
     split: &Split,
     q: &[f64; N],
     dq: &[f64; N],
-) -> Result<(), Error> {
-    let names = ld.system.coordinates();
+) -> Vec<(usize, f64)> {
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut uniform = move || {
         state ^= state << 13;
@@ -25,6 +24,7 @@ pub fn check_invariance<S: System<N>, const N: usize>(
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
+    let mut deviations = Vec::with_capacity(split.n_g());
     for &gj in &split.group {
         let mut worst = 0.0f64;
         for _ in 0..16 {
@@ -39,13 +39,25 @@ pub fn check_invariance<S: System<N>, const N: usize>(
             let deviation = if before.is_finite() && after.is_finite() { (before - after).abs() / scale } else { 0.0 };
             worst = worst.max(deviation);
         }
-        if worst > INVARIANCE_TOLERANCE {
-            return Err(Error::NotInvariant {
-                coordinate: names[gj].name.clone(),
-                deviation: worst,
-                tolerance: INVARIANCE_TOLERANCE,
-            });
-        }
+        deviations.push((gj, worst));
     }
-    Ok(())
+    deviations
+}
+
+/// Checks that L_d is invariant under translation of each group coordinate (see
+/// [`invariance_deviations`]) to [`INVARIANCE_TOLERANCE`]. Names the first group coordinate that
+/// breaks it.
+pub fn check_invariance<S: System<N>, const N: usize>(
+    ld: &DiscreteLagrangian<'_, S>,
+    split: &Split,
+    q: &[f64; N],
+    dq: &[f64; N],
+) -> Result<(), Error> {
+    let names = ld.system.coordinates();
+    match invariance_deviations(ld, split, q, dq).into_iter().find(|&(_, d)| d > INVARIANCE_TOLERANCE) {
+        Some((gj, deviation)) => {
+            Err(Error::NotInvariant { coordinate: names[gj].name.clone(), deviation, tolerance: INVARIANCE_TOLERANCE })
+        }
+        None => Ok(()),
+    }
 }
