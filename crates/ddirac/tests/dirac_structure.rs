@@ -4,7 +4,8 @@
 //! eq:geometricequationsminus. Lemmas partialderivativesld(minus) are checked against AD of L_d.
 
 use ddirac::reduction::dirac_structure::*;
-use ddirac::reduction::trivialization::{SplitVector, TrivializedLagrangian};
+use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
+use ddirac::reduction::trivialization::SplitVector;
 use ddirac::systems::{ChargedParticle, TwoBody};
 use ddirac::{solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Split, System, Variant};
 
@@ -84,7 +85,7 @@ fn step_minus(k: &[Vec<f64>], a: &Point, b: &Point) -> (ReducedStepMinus, Vec<f6
 }
 
 /// Checks every step of a (+) run: membership in [D̂^{d+}] and eq:geometricequations.
-fn check_plus<S: System<4>>(reduction: &TrivializedLagrangian<'_, S>, k: &[Vec<f64>], points: &[Point]) -> (f64, f64) {
+fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, k: &[Vec<f64>], points: &[Point]) -> (f64, f64) {
     let scale = scale_of(points);
     let (mut dirac, mut general) = (0.0f64, 0.0f64);
     for pair in points.windows(2) {
@@ -98,7 +99,7 @@ fn check_plus<S: System<4>>(reduction: &TrivializedLagrangian<'_, S>, k: &[Vec<f
 /// Checks every step of a (−) run: membership in [D̂^{d−}], the corrected general form, and the
 /// smallest residual of the printed general form over all steps relative to that step's momenta.
 fn check_minus<S: System<4>>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     k: &[Vec<f64>],
     points: &[Point],
 ) -> (f64, f64, f64) {
@@ -122,7 +123,7 @@ fn charged_particle_plus_run_lies_in_the_reduced_dirac_structure() {
     let system = ChargedParticle::default();
     let k = vec![vec![0.0; 3]];
     let points = reduced_run(&system, &ChargedParticle::paper_problem(100), Rule::Left, Variant::Plus, &k);
-    let reduction = TrivializedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
     let (dirac, general) = check_plus(&reduction, &k, &points);
     eprintln!("charged particle (+): Dirac residual {dirac:.2e}, general form {general:.2e}");
     assert!(dirac < TOLERANCE && general < TOLERANCE);
@@ -133,7 +134,7 @@ fn charged_particle_minus_run_satisfies_the_corrected_equations_only() {
     let system = ChargedParticle::default();
     let k = vec![vec![0.0; 3]];
     let points = reduced_run(&system, &ChargedParticle::paper_problem(100), Rule::Left, Variant::Minus, &k);
-    let reduction = TrivializedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
     let (dirac, corrected, printed) = check_minus(&reduction, &k, &points);
     eprintln!("charged particle (−): Dirac {dirac:.2e}, corrected {corrected:.2e}, printed (min) {printed:.2e}");
     assert!(dirac < TOLERANCE && corrected < TOLERANCE);
@@ -149,8 +150,7 @@ fn two_body_plus_run_with_centre_of_mass_connection() {
     let system = TwoBody::default();
     let k = system.centre_of_mass_connection();
     let points = reduced_run(&system, &two_body_problem(), Rule::Midpoint, Variant::Plus, &k);
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let (dirac, general) = check_plus(&reduction, &k, &points);
     eprintln!("two bodies (+): Dirac residual {dirac:.2e}, general form {general:.2e}");
     assert!(dirac < TOLERANCE && general < TOLERANCE);
@@ -164,8 +164,7 @@ fn two_body_minus_run_satisfies_the_corrected_equations_only() {
     let system = TwoBody::default();
     let k = system.centre_of_mass_connection();
     let points = reduced_run(&system, &two_body_problem(), Rule::Midpoint, Variant::Minus, &k);
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let (dirac, corrected, printed) = check_minus(&reduction, &k, &points);
     eprintln!("two bodies (−): Dirac {dirac:.2e}, corrected {corrected:.2e}, printed (min) {printed:.2e}");
     assert!(dirac < TOLERANCE && corrected < TOLERANCE);
@@ -183,8 +182,8 @@ fn sampler(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
-fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> TrivializedLagrangian<'a, TwoBody> {
-    TrivializedLagrangian::new(system, Rule::Trapezoid, 0.1, Connection::new(k, 2, 2).unwrap()).unwrap()
+fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> ReducedLagrangian<'a, TwoBody> {
+    ReducedLagrangian::new(system, Rule::Trapezoid, 0.1, Connection::new(k, 2, 2).unwrap()).unwrap()
 }
 
 fn assert_close(a: &SplitVector, b: &SplitVector, tol: f64) {
@@ -295,6 +294,6 @@ fn general_forms_agree_with_the_simplified_equations() {
 #[test]
 fn mismatched_connection_is_refused() {
     let system = TwoBody::default();
-    let result = TrivializedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::zero(3, 1));
+    let result = ReducedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::zero(3, 1));
     assert!(matches!(result, Err(ddirac::Error::Invalid { .. })));
 }

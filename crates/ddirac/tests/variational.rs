@@ -8,7 +8,7 @@
 
 use ddirac::mechanics::pontryagin::*;
 use ddirac::reduction::dirac_structure::Signs;
-use ddirac::reduction::trivialization::TrivializedLagrangian;
+use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};
 use ddirac::{
     solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Solution, Split, System, Variant,
@@ -51,7 +51,7 @@ fn check_plus_action<S: System<4>>(ld: &ddirac::DiscreteLagrangian<'_, S>, solut
 }
 
 /// Σ e_{d+} along Λ_{d+}(curve) is stationary and equals S⁺ (reduced variational principle).
-fn check_reduced_plus<S: System<4>>(reduction: &TrivializedLagrangian<'_, S>, solution: &Solution) -> f64 {
+fn check_reduced_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, solution: &Solution) -> f64 {
     let curve = PlusCurve::<4>::from_trajectory(&solution.q, &solution.p).unwrap();
     let reduced = curve.trivialize(&reduction.connection, &reduction.split).unwrap();
     let stationary = relative(&reduced_action_plus_gradient(reduction, &reduced).unwrap());
@@ -83,7 +83,7 @@ fn charged_particle_reduced_run_is_stationary_for_s_plus_and_the_reduced_action(
     let system = ChargedParticle::default();
     let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
     let solution = run(&system, &ChargedParticle::paper_problem(100), &method);
-    let reduction = TrivializedLagrangian::new(&system, Rule::Left, 0.2, Connection::zero(3, 1)).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::zero(3, 1)).unwrap();
     let g = check_plus_action(&reduction.ld, &solution);
     let e = check_reduced_plus(&reduction, &solution);
     eprintln!("charged particle, reduced (+): |∇S⁺|/scale = {g:.2e}, |∇Σe_d+|/scale = {e:.2e}");
@@ -97,7 +97,7 @@ fn double_spherical_pendulum_midpoint_run_is_stationary() {
     for reduced in [false, true] {
         let method = Method { rule: Rule::Midpoint, reduced, ..Method::default() };
         let solution = run(&system, &problem, &method);
-        let reduction = TrivializedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::zero(3, 1)).unwrap();
+        let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::zero(3, 1)).unwrap();
         let g = check_plus_action(&reduction.ld, &solution);
         let e = check_reduced_plus(&reduction, &solution);
         eprintln!("double spherical pendulum, reduced = {reduced}: |∇S⁺|/scale = {g:.2e}, |∇Σe_d+|/scale = {e:.2e}");
@@ -116,8 +116,7 @@ fn two_body_reduced_plus_run_with_centre_of_mass_connection_is_stationary() {
     let k = system.centre_of_mass_connection();
     let method = Method { rule: Rule::Midpoint, reduced: true, connection: Some(k.clone()), ..Method::default() };
     let solution = run(&system, &problem, &method);
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let g = check_plus_action(&reduction.ld, &solution);
     let e = check_reduced_plus(&reduction, &solution);
     eprintln!("two bodies, reduced (+), K ≠ 0: |∇S⁺|/scale = {g:.2e}, |∇Σe_d+|/scale = {e:.2e}");
@@ -137,8 +136,7 @@ fn two_body_reduced_minus_run_is_stationary_for_the_corrected_s_minus_only() {
         ..Method::default()
     };
     let solution = run(&system, &problem, &method);
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let curve = MinusCurve::<4>::from_trajectory(&solution.q, &solution.p).unwrap();
     let reduced = curve.trivialize(&reduction.connection, &Split::new(&system.coordinates())).unwrap();
 
@@ -174,8 +172,7 @@ fn two_body_reduced_minus_run_is_stationary_for_the_corrected_s_minus_only() {
 fn reduced_energies_are_the_energies_in_trivialized_coordinates() {
     let system = TwoBody::default();
     let k = vec![vec![-0.4, 0.3], vec![0.2, -0.7]];
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let ld = &reduction.ld;
     let (q0, q1) = ([0.3, -0.2, 1.0, 0.1], [0.5, 0.1, 0.8, 0.4]);
     let aux = [0.6, -0.1, 0.9, 0.3];
@@ -257,8 +254,7 @@ fn check_against_differences<C: Clone>(
 fn assembled_gradients_match_finite_differences() {
     let system = TwoBody::default();
     let k = vec![vec![-0.4, 0.3], vec![0.2, -0.7]];
-    let reduction =
-        TrivializedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.1, Connection::new(&k, 2, 2).unwrap()).unwrap();
     let mut u = sampler(5);
     let mut point = || -> [f64; 4] { [u(), u(), 1.0 + 0.2 * u(), 0.5 + 0.2 * u()] };
     let q: Vec<[f64; 4]> = (0..4).map(|_| point()).collect();

@@ -34,7 +34,8 @@ use nalgebra::{Const, U1};
 use num_dual::{DualNum, DualSVec64};
 
 use crate::reduction::dirac_structure::Signs;
-use crate::reduction::trivialization::{lambda_d, lambda_hat, lambda_tilde, SplitVector, TrivializedLagrangian};
+use crate::reduction::reduced_lagrangian::ReducedLagrangian;
+use crate::reduction::trivialization::{lambda_d, lambda_hat, lambda_tilde, SplitVector};
 use crate::{Connection, DiscreteLagrangian, Error, Split, System};
 
 /// A curve on the (+) discrete Pontryagin bundle: q_0 … q_N, q_0^+ … q_{N−1}^+, p_1 … p_N.
@@ -193,7 +194,7 @@ where
 /// e_{d+}(x0, x0^+, g0^+, q1, w1, μ1) (lemma:reducedactionlocal), with `plus` = (x0^+, g0^+) and
 /// q1 = (x1, g1) relative to g0; generic over the scalar.
 pub fn reduced_energy_plus<S, D, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     x0: &[D],
     plus: (&[D], &[D]),
     q1: (&[D], &[D]),
@@ -217,7 +218,7 @@ where
 /// to g1; generic over the scalar.
 #[allow(clippy::too_many_arguments)]
 pub fn reduced_energy_minus<S, D, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     minus: (&[D], &[D]),
     x1: &[D],
     w0: &[D],
@@ -258,7 +259,7 @@ pub fn action_minus<S: System<N>, const N: usize>(
 
 /// Σ_k e_{d+} along a trivialized curve (eq:reducedlagrangepontryaginprinciple).
 pub fn reduced_action_plus<S: System<N>, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     curve: &PlusCurve<N>,
 ) -> Result<f64, Error> {
     let steps = curve.steps()?;
@@ -267,7 +268,7 @@ pub fn reduced_action_plus<S: System<N>, const N: usize>(
 
 /// Σ_k e_{d−} along a trivialized curve (eq:reducedlagrangepontryaginprincipleminus).
 pub fn reduced_action_minus<S: System<N>, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<f64, Error> {
@@ -301,7 +302,7 @@ pub fn action_minus_gradient<S: System<N>, const N: usize>(
 /// The gradient of Σ e_{d+} along a trivialized curve with respect to the interior q̂_k = (x_k, g_k),
 /// every (x_k^+, g_k^+) and every (w_{k+1}, μ_{k+1}).
 pub fn reduced_action_plus_gradient<S: System<N>, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     curve: &PlusCurve<N>,
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
@@ -312,7 +313,7 @@ pub fn reduced_action_plus_gradient<S: System<N>, const N: usize>(
 /// The gradient of Σ e_{d−} along a trivialized curve with respect to the interior q̂_k, every
 /// (x_{k+1}^−, g_{k+1}^−) and every (w_k, μ_k).
 pub fn reduced_action_minus_gradient<S: System<N>, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<ActionGradient<N>, Error> {
@@ -398,7 +399,7 @@ fn assemble<const N: usize>(
 /// e_{d+} on packed blocks: q0 = (x0, g0), plus = (x0^+, g0^+), q1 = (x1, g1) (absolute; made relative
 /// to g0 here) and wm1 = (w1, μ1).
 fn e_plus<S, D, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     q0: &[D; N],
     plus: &[D; N],
     q1: &[D; N],
@@ -425,7 +426,7 @@ where
 /// e_{d−} on packed blocks: minus = (x1^−, g1^−), q1 = (x1, g1), wm0 = (w0, μ0) and q0 = (x0, g0)
 /// (absolute; made relative to g1 here).
 fn e_minus<S, D, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     minus: &[D; N],
     q1: &[D; N],
     wm0: &[D; N],
@@ -452,7 +453,7 @@ where
 
 /// (Kᵀ μ)_i with μ at the group positions of a packed block.
 fn kt_times<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     i: usize,
     packed: &[D; N],
 ) -> D {
@@ -466,7 +467,7 @@ fn kt_times<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
 
 /// The shape entries of a packed block, with zeros at the group positions.
 fn shape_only<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<'_, S>,
     packed: &[D; N],
 ) -> [D; N] {
     let mut out = [D::from(0.0); N];
@@ -475,11 +476,7 @@ fn shape_only<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
 }
 
 /// (x0 at the shape positions, γ = g^+ at the group positions).
-fn x0_gamma<S, D: Copy, const N: usize>(
-    reduction: &TrivializedLagrangian<'_, S>,
-    x0: &[D; N],
-    plus: &[D; N],
-) -> [D; N] {
+fn x0_gamma<S, D: Copy, const N: usize>(reduction: &ReducedLagrangian<'_, S>, x0: &[D; N], plus: &[D; N]) -> [D; N] {
     let mut out = *x0;
     reduction.split.group.iter().for_each(|&gj| out[gj] = plus[gj]);
     out

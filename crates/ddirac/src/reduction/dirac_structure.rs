@@ -20,14 +20,14 @@
 //! ```
 //!
 //! A reduced step X satisfies the reduced Lagrange–Poincaré–Dirac equations when
-//! \[Ω̂♭_{d±}\](X) = \[D̂^±L_d\](…) ([`TrivializedLagrangian::dirac_residual_plus`], `…_minus`).
+//! \[Ω̂♭_{d±}\](X) = \[D̂^±L_d\](…) ([`ReducedLagrangian::dirac_residual_plus`], `…_minus`).
 //!
 //! Lemmas `lemma:partialderivativesld` / `…minus` express D1 L_d, D2 L_d through the partials of the
-//! reduced Lagrangians l± ([`TrivializedLagrangian::lagrangian_plus`], `…_minus`).
+//! reduced Lagrangians l± ([`ReducedLagrangian::lagrangian_plus`], `…_minus`).
 //!
 //! **General form** of the reduced equations, with the maps h_d^0, h_{d,Q}, h_{d,Σ}, h*_{d,Σ} exactly
-//! as printed: eq:geometricequations ([`TrivializedLagrangian::general_form_plus`]) and
-//! eq:geometricequationsminus ([`TrivializedLagrangian::general_form_minus`]).
+//! as printed: eq:geometricequations ([`ReducedLagrangian::general_form_plus`]) and
+//! eq:geometricequationsminus ([`ReducedLagrangian::general_form_minus`]).
 //!
 //! *Erratum.* Derived from [Ω̂♭_{d−}] and [D̂⁻L_d] above with `lemma:partialderivativesldminus`, the
 //! (−) equations read
@@ -40,9 +40,8 @@
 //! w_k, μ_k, w_{k+1}, μ_{k+1}: it describes the motion with reversed momenta. [`Signs`] selects the
 //! printed or the corrected display; trajectories of the integrators satisfy the corrected one.
 
-use crate::reduction::trivialization::{
-    add, expect_len, h_sigma_star, pullback, sub, SplitVector, TrivializedLagrangian,
-};
+use crate::reduction::reduced_lagrangian::ReducedLagrangian;
+use crate::reduction::trivialization::{add, expect_len, h_sigma_star, pullback, sub, SplitVector};
 use crate::{Connection, Error, System};
 
 /// Which signs to use for the (−) equations and actions: the paper's as printed, or corrected.
@@ -208,7 +207,7 @@ impl GeneralForm {
     }
 }
 
-impl<S> TrivializedLagrangian<'_, S> {
+impl<S> ReducedLagrangian<'_, S> {
     /// (D1 L_d, D2 L_d) at (x0, 0, x1, g1 + h_d^0(x0, x1)) from the partials of l₊ at (x0, x1, g1), as
     /// printed in `lemma:partialderivativesld`.
     pub fn ld_partials_from_plus<const N: usize>(

@@ -5,4 +5,5 @@ pub mod connection;
 pub mod dirac_structure;
 pub mod invariance;
 pub(crate) mod reduced;
+pub mod reduced_lagrangian;
 pub mod trivialization;
