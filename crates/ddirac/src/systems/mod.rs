@@ -4,10 +4,14 @@
 
 mod charged_particle;
 mod double_spherical_pendulum;
+mod heavy_top;
+mod kepler;
 mod two_body;
 
 pub use charged_particle::{ChargedParticle, TABLE_1};
 pub use double_spherical_pendulum::DoubleSphericalPendulum;
+pub use heavy_top::HeavyTop;
+pub use kepler::Kepler;
 pub use two_body::TwoBody;
 
 use crate::{DynSystem, Erased, Error};
@@ -90,6 +94,18 @@ pub const BUILT_IN: &[BuiltIn] = &[
         description: "two bodies in the plane, g = r1, x = r2 − r1 (centre-of-mass connection K ≠ 0)",
         defaults: || TwoBody::default().parameters(),
         build: |o| build(TwoBody::default(), o),
+    },
+    BuiltIn {
+        name: "kepler",
+        description: "Kepler problem in polar coordinates (r, φ), φ cyclic; exact solution for bound orbits",
+        defaults: || Kepler::default().parameters(),
+        build: |o| build(Kepler::default(), o),
+    },
+    BuiltIn {
+        name: "heavy_top",
+        description: "heavy symmetric top in Euler angles (φ, θ, ψ), G = T² (φ, ψ)",
+        defaults: || HeavyTop::default().parameters(),
+        build: |o| build(HeavyTop::default(), o),
     },
 ];
 
