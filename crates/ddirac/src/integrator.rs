@@ -166,7 +166,11 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         for k in 0..=steps {
             let t = k as f64 * h;
             let p = scheme.p_from_momenta(&momenta);
-            let j: Vec<f64> = split.g(&p);
+            let mut j = [0.0; N];
+            for (slot, &gj) in j.iter_mut().zip(&split.group) {
+                *slot = p[gj];
+            }
+            let j = &j[..split.n_g()];
             max_drift = j.iter().zip(&j0).fold(max_drift, |m, (a, b)| m.max((a - b).abs()));
             let report = k % self.output.every == 0 || k == steps;
             if k == steps {
@@ -174,7 +178,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                     let q = config.output(self.output.wrap_angles);
                     let e = legendre::hamiltonian(self.system, config.base(), &p);
                     energy.push(e);
-                    let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: None, momentum_map: &j };
+                    let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: None, momentum_map: j };
                     observer(&row).map_err(Error::Output)?;
                 }
                 break;
@@ -216,7 +220,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                     p: &p,
                     energy: e,
                     discrete_energy: Some(last.discrete_energy),
-                    momentum_map: &j,
+                    momentum_map: j,
                 };
                 observer(&row).map_err(Error::Output)?;
             }
