@@ -19,6 +19,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod baselines;
 pub mod chart;
 mod check;
 pub mod diagnostics;
