@@ -688,3 +688,25 @@ proptest! {
         }
     }
 }
+
+/// num-dual's `powi` forms the factors n(n−1) and n(n−1)(n−2) of the second and third derivatives
+/// in i32, which 50000·49999 overflows (a panic with overflow checks, a wrong derivative without);
+/// such exponents go through `powf`.
+#[test]
+fn large_integer_exponents_have_exact_derivatives() {
+    let program = Scope::new().variable("x").compile_expression("x^50000 - pow(x, -2000) + x^1024").unwrap();
+    let (n, m, k) = (50000.0f64, -2000.0f64, 1024.0f64);
+    // At x = 1 every derivative is an exact integer.
+    let (value, d1, d2, d3) = num_dual::third_derivative(|x| program.eval(&[x]), 1.0);
+    assert_eq!(value, 1.0);
+    assert_eq!(d1, n - m + k);
+    assert_eq!(d2, n * (n - 1.0) - m * (m - 1.0) + k * (k - 1.0));
+    assert_eq!(d3, n * (n - 1.0) * (n - 2.0) - m * (m - 1.0) * (m - 2.0) + k * (k - 1.0) * (k - 2.0));
+    // Elsewhere, against the closed forms.
+    let x = 1.00001f64;
+    let (value, d1, d2) = num_dual::second_derivative(|x| program.eval(&[x]), x);
+    let term = |n: f64, order: i32| (0..order).map(|j| n - j as f64).product::<f64>() * x.powf(n - order as f64);
+    assert_close(value, term(n, 0) - term(m, 0) + term(k, 0), 1e-12, "value");
+    assert_close(d1, term(n, 1) - term(m, 1) + term(k, 1), 1e-12, "first derivative");
+    assert_close(d2, term(n, 2) - term(m, 2) + term(k, 2), 1e-12, "second derivative");
+}

@@ -7,6 +7,11 @@ use std::collections::HashMap;
 
 use super::functions::{Binary, Scalar, Unary};
 
+/// The largest |n| for which `x^n` of a variable is `powi`. num-dual's `powi` multiplies the factors
+/// n(n−1) and n(n−1)(n−2) of the second and third derivatives as i32, which overflows beyond
+/// |n| = 1290; larger exponents take `powf`, which forms those factors in floating point.
+const MAX_POWI: f64 = 1024.0;
+
 /// The index of a node.
 pub(super) type Value = u32;
 
@@ -274,14 +279,14 @@ impl Graph {
         }
     }
 
-    /// a^b: `powi` for an integer constant exponent, `powf` for another constant exponent,
-    /// exp(b ln a) otherwise.
+    /// a^b: `powi` for an integer constant exponent with |b| ≤ [`MAX_POWI`], `powf` for another
+    /// constant exponent, exp(b ln a) otherwise.
     fn pow(&mut self, a: Operand, b: Operand) -> Operand {
         let integer = |n: f64| n.fract() == 0.0 && n.abs() <= i32::MAX as f64;
         match (a, b) {
             (Operand::Const(x), Operand::Const(n)) if integer(n) => Operand::Const(x.powi(n as i32)),
             (Operand::Const(x), Operand::Const(n)) => Operand::Const(x.powf(n)),
-            (Operand::Value(v), Operand::Const(n)) if integer(n) => match n as i32 {
+            (Operand::Value(v), Operand::Const(n)) if integer(n) && n.abs() <= MAX_POWI => match n as i32 {
                 0 => Operand::Const(1.0),
                 1 => a,
                 2 => self.mul(a, a),

@@ -16,8 +16,8 @@
 //! `.5`, `3.`, `1e-3`, `2.5E+4`); names are `[A-Za-z_][A-Za-z0-9_]*`. The functions are `sin cos tan
 //! asin acos atan sinh cosh tanh exp ln log sqrt abs` (one argument; `log` is the natural logarithm,
 //! like `ln`) and `atan2(y, x) pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]). `x^n` (or `pow(x, n)`)
-//! with an integer constant n is `powi` (`x^2` is x·x, as in `powi`), with another constant exponent
-//! `powf`, and otherwise `exp(n ln x)`.
+//! with an integer constant n, |n| ≤ 1024, is `powi` (`x^2` is x·x, as in `powi`), with another
+//! constant exponent `powf`, and otherwise `exp(n ln x)`.
 //! `min`/`max` pick one argument by value and carry that argument's derivatives.
 //!
 //! # Compilation
