@@ -12,7 +12,7 @@ use crate::spec::Plan;
 pub struct SummaryJson<'a> {
     ddirac_version: &'static str,
     spec: String,
-    system: &'static str,
+    system: &'a str,
     parameters: Parameters<'a>,
     coordinates: &'a [String],
     method: MethodJson,
@@ -112,7 +112,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
     SummaryJson {
         ddirac_version: env!("CARGO_PKG_VERSION"),
         spec: spec.display().to_string(),
-        system: plan.built_in.name,
+        system: &plan.name,
         parameters: Parameters(&plan.parameters),
         coordinates: &summary.coordinates,
         method: MethodJson {
@@ -169,7 +169,7 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
     [
         format!(
             "{}: {} steps of h = {} (T = {}), rule {}, variant {}, {}",
-            plan.built_in.name,
+            plan.name,
             summary.steps,
             summary.step,
             summary.step * summary.steps as f64,

@@ -92,20 +92,8 @@ fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddir
         };
         return CliError::Output { dir: dir.to_owned(), source };
     }
-    match plan.spans.locate(&error) {
-        Some((span, label)) => {
-            let help = match error {
-                ddirac::Error::NotInvariant { .. } => Some(
-                    "run the unreduced equations (`reduced = false`) or skip the check (`check_invariance = false`)",
-                ),
-                _ => None,
-            };
-            let mut e = source.error(Some(span), error.to_string(), label);
-            if let Some(help) = help {
-                e = e.with_help(help);
-            }
-            e.into()
-        }
+    match plan.spans.diagnostic(source, &error) {
+        Some(diagnostic) => diagnostic.into(),
         None => CliError::Integration(error),
     }
 }

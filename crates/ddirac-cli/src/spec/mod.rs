@@ -1,19 +1,27 @@
-//! The run spec: a TOML file naming a system, its parameters, the method, the time grid, the
-//! initial data and the output options.
+//! The run spec: a TOML file naming a system (or defining one by its Lagrangian), its parameters,
+//! the method, the time grid, the initial data and the output options.
 //!
 //! ```text
-//! system = "charged_particle"
-//! [parameters]  m = 1.0                       # overrides of the system's defaults
+//! system = "charged_particle"                 # a built-in system, or a [system] table:
+//! [system]      name = "charged particle"  shape = ["x", "y", "z"]  group = ["theta"]
+//!               angles = ["theta"]  order = [...]  lagrangian = "0.5*m*x_dot^2 + ..."
+//! [system.definitions]  Ax = "-B0/2*y"        # named sub-expressions
+//! [system.exact]        x = "sin(t)"          # exact solution, in `t` and the parameters
+//! [parameters]  m = 1.0                       # overrides of the defaults, or the constants of L
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
 //!               tolerance = 1e-12  max_iterations = 50  check_invariance = true
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
-//! [initial]     q = [0, 0, 0, 0]  p = [1, 0, 1, 1]         # or v = [...] instead of p
+//! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false
 //! ```
 //!
 //! The schema keeps every value [`Spanned`], so that [`validate`] can point at the text of any value
 //! it rejects; unknown keys are refused by the parser itself, with the key's span.
 
+mod expression;
+mod initial;
+mod lists;
+mod strings;
 mod time;
 mod validate;
 
@@ -53,31 +61,59 @@ pub struct Spec {
 }
 
 /// How a spec names its system.
-///
-/// Only built-in systems exist so far (`system = "name"`); a `[system]` table defining a Lagrangian
-/// by expressions is meant to become a second variant.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug)]
 pub enum SystemRef {
-    /// A system of `ddirac::systems::BUILT_IN`, by name.
+    /// A system of `ddirac::systems::BUILT_IN`, by name: `system = "name"`.
     BuiltIn(String),
+    /// A system defined by its Lagrangian: a `[system]` table.
+    Expression(Box<SystemTable>),
 }
 
 impl<'de> Deserialize<'de> for SystemRef {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         struct Visitor;
-        impl serde::de::Visitor<'_> for Visitor {
+        impl<'de> serde::de::Visitor<'de> for Visitor {
             type Value = SystemRef;
             fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str(
-                    "the name of a built-in system (see `ddirac systems`); `[system]` tables are not supported yet",
-                )
+                f.write_str("the name of a built-in system (see `ddirac systems`) or a `[system]` table")
             }
             fn visit_str<E: serde::de::Error>(self, name: &str) -> Result<SystemRef, E> {
                 Ok(SystemRef::BuiltIn(name.to_owned()))
             }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<SystemRef, A::Error> {
+                let table = SystemTable::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(SystemRef::Expression(Box::new(table)))
+            }
         }
-        deserializer.deserialize_str(Visitor)
+        deserializer.deserialize_any(Visitor)
     }
+}
+
+/// A list of names as written in the spec.
+pub type Names = Spanned<Vec<Spanned<String>>>;
+/// A table of expressions by name, as written in the spec.
+pub type Sources = Spanned<BTreeMap<Spanned<String>, Spanned<String>>>;
+
+/// `[system]`: a system defined by its Lagrangian.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SystemTable {
+    /// A name for reports (default `custom`).
+    pub name: Option<Spanned<String>>,
+    /// The coordinates x of the shape space Σ.
+    pub shape: Option<Names>,
+    /// The coordinates g translated by the symmetry group G.
+    pub group: Option<Names>,
+    /// The coordinates (of either list) that live on S¹.
+    pub angles: Option<Names>,
+    /// The order of all coordinates (default: shape, then group).
+    pub order: Option<Names>,
+    /// L(q, q̇) in the coordinates, their velocities `<name>_dot`, the parameters and definitions.
+    pub lagrangian: Spanned<String>,
+    /// Named sub-expressions.
+    pub definitions: Option<Sources>,
+    /// An exact solution, coordinate name → expression in `t` and the parameters.
+    pub exact: Option<Sources>,
 }
 
 /// `[method]`.
@@ -112,16 +148,52 @@ pub struct TimeSpec {
     pub duration: Option<Number>,
 }
 
-/// `[initial]`: q and exactly one of p, v, in the system's coordinate order.
+/// `[initial]`: q and exactly one of p, v, each in the coordinate order or by coordinate name.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSpec {
     /// Initial configuration.
-    pub q: Numbers,
+    pub q: Spanned<Vector>,
     /// Initial momenta.
-    pub p: Option<Numbers>,
+    pub p: Option<Spanned<Vector>>,
     /// Initial velocities.
-    pub v: Option<Numbers>,
+    pub v: Option<Spanned<Vector>>,
+}
+
+/// One number per coordinate: an array in the coordinate order, or a table by coordinate name.
+#[derive(Debug)]
+pub enum Vector {
+    /// `[1.0, 0.0]`.
+    InOrder(Vec<Number>),
+    /// `{ x = 1.0, theta = 0.0 }`, in the order written.
+    ByName(Vec<(Spanned<String>, Number)>),
+}
+
+impl<'de> Deserialize<'de> for Vector {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Vector;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("an array of numbers in coordinate order, or a table of numbers by coordinate name")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vector, A::Error> {
+                let mut values = vec![];
+                while let Some(value) = seq.next_element()? {
+                    values.push(value);
+                }
+                Ok(Vector::InOrder(values))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Vector, A::Error> {
+                let mut values = vec![];
+                while let Some(entry) = map.next_entry()? {
+                    values.push(entry);
+                }
+                Ok(Vector::ByName(values))
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
 }
 
 /// `[output]`.

@@ -1,22 +1,20 @@
-//! Checks a parsed [`Spec`] against the system it names and turns it into the library's problem,
-//! method and output options. Every rejection points at the value's span.
+//! Checks a parsed [`Spec`] against the system it names (or defines) and turns it into the library's
+//! problem, method and output options. Every rejection points at the value's span.
 
 use std::ops::Range;
 
 use ddirac::systems::BuiltIn;
-use ddirac::{
-    Coordinate, DynSystem, InitialMomentum, Method, NewtonOptions, OutputOptions, Problem, Role, Rule, Variant,
-};
+use ddirac::{Coordinate, DynSystem, Method, NewtonOptions, OutputOptions, Problem, Role, Rule, Variant};
 use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::{time, Number, Numbers, Spec, SystemRef};
+use super::{expression, initial, time, Number, Numbers, Spec, SystemRef};
 use crate::diagnostics::{SpecError, SpecSource};
 
 /// A validated spec, ready to run.
 pub struct Plan {
-    /// The built-in system.
-    pub built_in: &'static BuiltIn,
+    /// The system's name: the built-in's name, or `system.name` of a `[system]` table.
+    pub name: String,
     /// The system with its parameters set.
     pub system: Box<dyn DynSystem>,
     /// All parameters with their effective values.
@@ -50,6 +48,10 @@ pub struct Spans {
     pub time: Option<Range<usize>>,
     /// `output.every`.
     pub every: Option<Range<usize>>,
+    /// The `system` value (name or table).
+    pub system: Option<Range<usize>>,
+    /// The declaration of each group coordinate in `system.group`, by name (`[system]` tables only).
+    pub group: Vec<(String, Range<usize>)>,
 }
 
 impl Spans {
@@ -77,23 +79,78 @@ impl Spans {
             None
         }
     }
+
+    /// A library error as a diagnostic pointing at the spec values it concerns, if it concerns any.
+    ///
+    /// A refused reduction points at `reduced = true` and, for a `[system]` table, at the group
+    /// coordinate whose translation changes L_d.
+    pub fn diagnostic(&self, source: &SpecSource, error: &ddirac::Error) -> Option<Box<SpecError>> {
+        let mut labels: Vec<LabeledSpan> = self
+            .locate(error)
+            .map(|(span, label)| LabeledSpan::new_with_span(Some(label.into()), span))
+            .into_iter()
+            .collect();
+        let help = match error {
+            ddirac::Error::NotInvariant { coordinate, tolerance, .. } => {
+                if let Some((_, span)) = self.group.iter().find(|(n, _)| n == coordinate) {
+                    let label = format!("L_d is not invariant under translations of `{coordinate}`");
+                    labels.push(LabeledSpan::new_with_span(Some(label), span.clone()));
+                }
+                Some(format!(
+                    "reduction needs L_d(q0 + a, q1 + a) = L_d(q0, q1) for translations a of every group coordinate \
+                     (relative tolerance {tolerance:.0e}); run the unreduced equations (`reduced = false`), or \
+                     choose group coordinates that the Lagrangian does not depend on"
+                ))
+            }
+            ddirac::Error::NoSymmetry => {
+                if let Some(span) = self.system.clone().filter(|_| labels.is_empty()) {
+                    labels.push(LabeledSpan::new_with_span(Some("no group coordinate".into()), span));
+                }
+                Some("list the coordinates translated by the symmetry in `system.group`".into())
+            }
+            _ => None,
+        };
+        if labels.is_empty() {
+            return None;
+        }
+        let diagnostic = source.error_with(error.to_string(), labels);
+        Some(match help {
+            Some(help) => diagnostic.with_help(help),
+            None => diagnostic,
+        })
+    }
 }
 
-/// Validates `spec` and builds the system it names.
+/// Validates `spec` and builds the system it names or defines.
 pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>> {
-    let mut spans = Spans { time: Some(spec.time.span()), ..Spans::default() };
-    let built_in = built_in(source, &spec.system)?;
-    let (parameters, overrides) = parameters(source, spec, built_in, &mut spans)?;
-    let system = (built_in.build)(&overrides).map_err(|e| {
-        let (span, label) = spans.locate(&e).map_or((None, ""), |(s, l)| (Some(s), l));
-        source.error(span, e.to_string(), label)
-    })?;
+    let mut spans = Spans { time: Some(spec.time.span()), system: Some(spec.system.span()), ..Spans::default() };
+    let (name, system, parameters) = match spec.system.get_ref() {
+        SystemRef::BuiltIn(name) => {
+            let built_in = built_in(source, name, spec.system.span())?;
+            let (parameters, overrides) = parameters(source, spec, built_in, &mut spans)?;
+            let system = (built_in.build)(&overrides).map_err(|e| {
+                let (span, label) = spans.locate(&e).map_or((None, ""), |(s, l)| (Some(s), l));
+                source.error(span, e.to_string(), label)
+            })?;
+            (built_in.name.to_owned(), system, parameters)
+        }
+        SystemRef::Expression(table) => {
+            let built = expression::build(source, spec, table, spec.system.span())?;
+            let coordinates = built.system.coordinates();
+            spans.group = built
+                .coordinates
+                .into_iter()
+                .filter(|(n, _)| coordinates.iter().any(|c| &c.name == n && c.role == Role::Group))
+                .collect();
+            (built.name, built.system, built.parameters)
+        }
+    };
     let coordinates = system.coordinates();
     let method = method(source, spec, &coordinates, &mut spans)?;
     let (step, steps) = time::grid(source, &spec.time)?;
 
     let names: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
-    let (q0, momentum) = initial(source, spec, &names, &mut spans)?;
+    let (q0, momentum) = initial::initial(source, spec, &names, &mut spans)?;
 
     let out = &spec.output;
     let every = match &out.every {
@@ -111,7 +168,7 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
         d => d.as_ref().map(|d| d.get_ref().clone()),
     };
     Ok(Plan {
-        built_in,
+        name,
         system,
         parameters,
         problem: Problem::new(step, steps, q0, momentum),
@@ -122,13 +179,13 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
     })
 }
 
-fn built_in(source: &SpecSource, system: &Spanned<SystemRef>) -> Result<&'static BuiltIn, Box<SpecError>> {
-    let SystemRef::BuiltIn(name) = system.get_ref();
+fn built_in(source: &SpecSource, name: &str, span: Range<usize>) -> Result<&'static BuiltIn, Box<SpecError>> {
     ddirac::systems::find(name).ok_or_else(|| {
         let known: Vec<&str> = ddirac::systems::BUILT_IN.iter().map(|b| b.name).collect();
-        source
-            .error(Some(system.span()), format!("unknown system `{name}`"), "not a built-in system")
-            .with_help(format!("built-in systems: {} (see `ddirac systems`)", known.join(", ")))
+        source.error(Some(span), format!("unknown system `{name}`"), "not a built-in system").with_help(format!(
+            "built-in systems: {} (see `ddirac systems`); or define one in a `[system]` table",
+            known.join(", ")
+        ))
     })
 }
 
@@ -275,64 +332,12 @@ fn connection(
     Ok(rows)
 }
 
-/// A vector with one finite entry per coordinate.
-fn vector(source: &SpecSource, values: &Numbers, key: &str, names: &[&str]) -> Result<Vec<f64>, Box<SpecError>> {
-    if values.get_ref().len() != names.len() {
-        return Err(source
-            .error(
-                Some(values.span()),
-                format!(
-                    "`{key}` has {} entries, but the system has {} coordinates",
-                    values.get_ref().len(),
-                    names.len()
-                ),
-                format!("expected {} entries", names.len()),
-            )
-            .with_help(format!("give one entry per coordinate, in order: {}", names.join(", "))));
-    }
-    values
-        .get_ref()
-        .iter()
-        .zip(names)
-        .map(|(v, name)| finite(source, v, &format!("`{key}` entry for `{name}`")))
-        .collect()
-}
-
-fn finite(source: &SpecSource, value: &Number, what: &str) -> Result<f64, Box<SpecError>> {
+/// `value`, if it is finite; `what` names it in the error.
+pub fn finite(source: &SpecSource, value: &Number, what: &str) -> Result<f64, Box<SpecError>> {
     let v = *value.get_ref();
     if v.is_finite() {
         Ok(v)
     } else {
         Err(source.error(Some(value.span()), format!("{what} is not finite ({v})"), "not a finite number"))
     }
-}
-
-/// q0 and exactly one of p0, v0.
-fn initial(
-    source: &SpecSource,
-    spec: &Spec,
-    names: &[&str],
-    spans: &mut Spans,
-) -> Result<(Vec<f64>, InitialMomentum), Box<SpecError>> {
-    let initial = spec.initial.get_ref();
-    let q0 = vector(source, &initial.q, "initial.q", names)?;
-    spans.q = Some(initial.q.span());
-    let momentum = match (&initial.p, &initial.v) {
-        (Some(p), None) => InitialMomentum::Momentum(vector(source, p, "initial.p", names)?),
-        (None, Some(v)) => InitialMomentum::Velocity(vector(source, v, "initial.v", names)?),
-        (None, None) => {
-            return Err(source
-                .error(Some(spec.initial.span()), "`[initial]` needs `p` or `v`", "this table")
-                .with_help("give the initial momenta as `p = [...]` or the initial velocities as `v = [...]`"))
-        }
-        (Some(p), Some(v)) => {
-            let labels =
-                [p, v].iter().map(|x| LabeledSpan::new_with_span(Some("given here".into()), x.span())).collect();
-            return Err(source
-                .error_with("`[initial]` takes `p` or `v`, not both", labels)
-                .with_help("remove one of them: `p` are momenta, `v` velocities mapped to momenta by ∂L/∂v"));
-        }
-    };
-    spans.momentum = initial.p.as_ref().or(initial.v.as_ref()).map(|x| x.span());
-    Ok((q0, momentum))
 }

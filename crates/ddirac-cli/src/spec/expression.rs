@@ -1,0 +1,187 @@
+//! A `[system]` table turned into a system: coordinates from the lists, the Lagrangian, definitions
+//! and exact solution compiled by `ddirac::expression`, parameters from `[parameters]`.
+//!
+//! An [`ExpressionError`] names the source it belongs to (the Lagrangian, a definition, an exact
+//! solution, a declaration) and a byte range in that source; it is reported at the corresponding
+//! characters of the spec file (see [`super::strings`]).
+
+use std::ops::Range;
+
+use ddirac::expression::{ExpressionError, ExpressionSpec, Origin};
+use ddirac::DynSystem;
+use miette::LabeledSpan;
+use toml::Spanned;
+
+use super::lists::{self, Declared};
+use super::{strings, Number, Sources, Spec, SystemTable};
+use crate::diagnostics::{SpecError, SpecSource};
+
+/// The system a `[system]` table defines.
+pub struct Built {
+    /// The system.
+    pub system: Box<dyn DynSystem>,
+    /// `system.name`, or `custom`.
+    pub name: String,
+    /// The parameters, in the order written.
+    pub parameters: Vec<(String, f64)>,
+    /// The span of each coordinate's declaration, by name.
+    pub coordinates: Vec<(String, Range<usize>)>,
+}
+
+/// The entries of a table of sources, in the order written.
+fn sources(table: &Option<Sources>) -> Vec<(&Spanned<String>, &Spanned<String>)> {
+    let mut entries: Vec<_> = table.as_ref().map(|t| t.get_ref().iter().collect()).unwrap_or_default();
+    entries.sort_by_key(|(key, _)| key.span().start);
+    entries
+}
+
+/// Builds the system of `table`, written at `span`, with the constants of `[parameters]`.
+pub fn build(
+    source: &SpecSource,
+    spec: &Spec,
+    table: &SystemTable,
+    span: Range<usize>,
+) -> Result<Built, Box<SpecError>> {
+    let declared = lists::coordinates(source, table, span.clone())?;
+    let mut parameters: Vec<(&Spanned<String>, &Number)> = spec.parameters.iter().collect();
+    parameters.sort_by_key(|(key, _)| key.span().start);
+    let values = parameters
+        .iter()
+        .map(|(name, value)| {
+            let v = super::validate::finite(source, value, &format!("parameter `{}`", name.get_ref()))?;
+            Ok((name.get_ref().clone(), v))
+        })
+        .collect::<Result<Vec<_>, Box<SpecError>>>()?;
+    let owned = |entries: Vec<(&Spanned<String>, &Spanned<String>)>| {
+        entries.into_iter().map(|(k, v)| (k.get_ref().clone(), v.get_ref().clone())).collect()
+    };
+    let expression = ExpressionSpec {
+        coordinates: declared.coordinates.clone(),
+        lagrangian: table.lagrangian.get_ref().clone(),
+        definitions: owned(sources(&table.definitions)),
+        parameters: values.clone(),
+        exact_solution: owned(sources(&table.exact)),
+    };
+    let context = Context { source, table, declared: &declared, parameters: &parameters, span };
+    let system = expression.into_dyn().map_err(|e| context.error(e))?;
+    let name = table.name.as_ref().map_or_else(|| "custom".to_owned(), |n| n.get_ref().clone());
+    let coordinates =
+        declared.coordinates.iter().zip(&declared.spans).map(|(c, s)| (c.name.clone(), s.clone())).collect();
+    Ok(Built { system, name, parameters: values, coordinates })
+}
+
+/// Where the sources and declarations of a `[system]` table are written.
+struct Context<'a> {
+    source: &'a SpecSource,
+    table: &'a SystemTable,
+    declared: &'a Declared,
+    parameters: &'a [(&'a Spanned<String>, &'a Number)],
+    span: Range<usize>,
+}
+
+impl Context<'_> {
+    /// The source text `origin` refers to (its value as written), and the span of its name.
+    fn locate(&self, origin: &Origin) -> (Option<&Spanned<String>>, Option<Range<usize>>) {
+        fn entry<'t>(table: &'t Option<Sources>, name: &str) -> (Option<&'t Spanned<String>>, Option<Range<usize>>) {
+            match sources(table).into_iter().find(|(k, _)| k.get_ref() == name) {
+                Some((key, value)) => (Some(value), Some(key.span())),
+                None => (None, None),
+            }
+        }
+        match origin {
+            Origin::Lagrangian => (Some(&self.table.lagrangian), None),
+            Origin::Definition(name) => entry(&self.table.definitions, name),
+            Origin::ExactSolution(name) => entry(&self.table.exact, name),
+            Origin::Coordinate(name) => (None, self.declared.span_of(name)),
+            Origin::Parameter(name) => {
+                (None, self.parameters.iter().find(|(k, _)| k.get_ref() == name).map(|(k, _)| k.span()))
+            }
+            _ => (None, None),
+        }
+    }
+
+    /// The label for the characters `inner` of the source `value`: exactly there when the string is
+    /// written verbatim, else on the whole value.
+    fn at(&self, value: &Spanned<String>, inner: Range<usize>, label: String) -> LabeledSpan {
+        let text = self.source.text();
+        match strings::inner_range(text, &value.span(), value.get_ref(), inner.clone()) {
+            Some(range) => LabeledSpan::new_with_span(Some(label), range),
+            None => LabeledSpan::new_with_span(
+                Some(format!("{label} (bytes {}..{} of this string)", inner.start, inner.end)),
+                value.span(),
+            ),
+        }
+    }
+
+    fn error(&self, error: ExpressionError) -> Box<SpecError> {
+        let mut message = error.to_string();
+        if let Some(span) = error.span() {
+            message = message.replacen(&format!(" at {span}:"), ":", 1);
+        }
+        let mut labels = vec![];
+        if let ExpressionError::Cycle { cycle, .. } = &error {
+            for step in cycle {
+                if let (Some(value), _) = self.locate(&step.origin) {
+                    labels.push(self.at(value, step.span.into(), format!("uses `{}`", step.name)));
+                }
+            }
+        } else if let Some(origin) = error.origin() {
+            let (value, key) = self.locate(origin);
+            match (error.span(), value, key) {
+                (Some(inner), Some(value), _) => labels.push(self.at(value, inner.into(), label(&error))),
+                (_, _, Some(key)) => labels.push(LabeledSpan::new_with_span(Some(label(&error)), key)),
+                _ => {}
+            }
+        }
+        if labels.is_empty() {
+            labels.push(LabeledSpan::new_with_span(Some("in this system".into()), self.span.clone()));
+        }
+        let error_help = help(&error, self);
+        let report = self.source.error_with(format!("invalid `[system]`: {message}"), labels);
+        match error_help {
+            Some(text) => report.with_help(text),
+            None => report,
+        }
+    }
+}
+
+fn label(error: &ExpressionError) -> String {
+    match error {
+        ExpressionError::Syntax { .. } => "here".into(),
+        ExpressionError::UnknownName { .. } => "unknown name".into(),
+        ExpressionError::Unavailable { .. } => "not available here".into(),
+        ExpressionError::UnknownFunction { .. } => "unknown function".into(),
+        ExpressionError::NotAFunction { .. } => "not a function".into(),
+        ExpressionError::Arity { .. } => "this call".into(),
+        ExpressionError::NonFinite { .. } => "not finite".into(),
+        ExpressionError::UnknownCoordinate { .. } => "not a coordinate".into(),
+        _ => "declared here".into(),
+    }
+}
+
+fn help(error: &ExpressionError, context: &Context<'_>) -> Option<String> {
+    let list = |names: Vec<String>| if names.is_empty() { "none".to_owned() } else { names.join(", ") };
+    let coordinates: Vec<String> = context.declared.coordinates.iter().map(|c| c.name.clone()).collect();
+    match error {
+        ExpressionError::UnknownName { origin: Origin::ExactSolution(_), .. } => {
+            Some(format!("an exact solution may use `t` and the parameters ({})", list(parameter_names(context))))
+        }
+        ExpressionError::UnknownName { .. } => Some(format!(
+            "the Lagrangian and the definitions may use the coordinates ({}), their velocities ({}), the \
+             parameters ({}) and the definitions ({}); give constants in `[parameters]`",
+            list(coordinates.clone()),
+            list(coordinates.iter().map(|c| format!("{c}_dot")).collect()),
+            list(parameter_names(context)),
+            list(sources(&context.table.definitions).iter().map(|(k, _)| k.get_ref().clone()).collect()),
+        )),
+        ExpressionError::UnknownCoordinate { .. } => {
+            Some(format!("`[system.exact]` gives expressions for coordinates: {}", list(coordinates)))
+        }
+        ExpressionError::Cycle { .. } => Some("a definition may not depend on itself, directly or not".into()),
+        _ => None,
+    }
+}
+
+fn parameter_names(context: &Context<'_>) -> Vec<String> {
+    context.parameters.iter().map(|(k, _)| k.get_ref().clone()).collect()
+}
