@@ -1,0 +1,182 @@
+//! `ddirac run SPEC --compare`: the spec run twice, with the reduced equations (paper
+//! `eq:geometricequations`, reconstruction of the group coordinates) and with the unreduced discrete
+//! Lagrange–Dirac equations, everything else equal.
+//!
+//! The two runs go to `DIR/reduced` and `DIR/unreduced` as ordinary runs; `DIR/compare.csv` holds,
+//! row by row, t and the differences reduced − unreduced of every coordinate (angles wrapped to
+//! (−π, π]) and of the discrete energy L_d(q_k, q_{k+1}); `DIR/compare.png` / `.svg` draw them, the
+//! middle panel being the paper's bottom panel of its energy figure (§7.2). The two flows agree to
+//! round-off, so the differences measure the round-off of both; the wall times show what the
+//! reduction costs or saves.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use ddirac::{Coordinate, CoordinateKind};
+
+use crate::diagnostics::CliError;
+use crate::output;
+use crate::plot::{self, Envelope, Figure, Panel, RunSummary, Series, ToolError, TrajectoryFile};
+use crate::progress::Progress;
+use crate::run::{self, Loaded, RunOptions};
+
+/// Name of the table of differences in the output directory.
+pub const TABLE: &str = "compare.csv";
+
+/// The two runs' directory names, reduced first.
+const RUNS: [&str; 2] = ["reduced", "unreduced"];
+
+/// Runs `options.spec` reduced and unreduced and compares them.
+pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
+    let Loaded { source, spec, mut plan } = run::load(&options.spec, &options.set)?;
+    let formats =
+        output::Formats::choose(&options.format, spec.output.format.as_ref(), &source).map_err(CliError::from)?;
+    let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
+    let created = !dir.exists();
+    let steps = plan.problem.steps as u64;
+    let mut progress = Progress::new(2 * steps, options.quiet);
+    let mut walls = vec![];
+    for (i, name) in RUNS.into_iter().enumerate() {
+        plan.method.reduced = i == 0;
+        progress.stage(i as u64 * steps, name);
+        let result =
+            run::write_run(&source, &plan, &options.spec, &dir.join(name), formats, Instant::now(), &mut progress);
+        match result {
+            Ok((summary, _)) => walls.push(summary.wall_seconds),
+            Err(error) => {
+                if created {
+                    // Removes the directories this command made, if the failed run left them empty.
+                    let _ = std::fs::remove_dir(dir.join(name));
+                    let _ = std::fs::remove_dir(&dir);
+                }
+                return Err(miette::Report::new(error).wrap_err(format!("the {name} run failed")));
+            }
+        }
+    }
+    progress.finish();
+
+    let coordinates = plan.system.coordinates();
+    let differences = differences(&dir, &coordinates)?;
+    let mut figures = plot::save(&differences.figure, &dir)?.len() / 2;
+    if spec.output.plots.as_ref().is_some_and(|p| *p.get_ref()) {
+        for name in RUNS {
+            figures += plot::plot_run(&dir.join(name))?.len() / 2;
+        }
+    }
+    if !options.quiet {
+        println!("{}", report(&differences.summary, &dir, &walls, &differences, figures));
+    }
+    Ok(())
+}
+
+/// The largest differences and the figure of them.
+struct Differences {
+    /// max |Δq_i| per coordinate, in order.
+    coordinates: Vec<(String, f64)>,
+    /// max |ΔL_d| (None if no row has both discrete energies).
+    discrete_energy: Option<f64>,
+    figure: Figure,
+    /// The summary of the reduced run.
+    summary: RunSummary,
+}
+
+/// Reads both runs row by row, writes `compare.csv` and gathers the figure.
+fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, ToolError> {
+    let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
+    let [reduced, unreduced] = RUNS.map(|name| TrajectoryFile::open(&dir.join(name), &names));
+    let (reduced, unreduced) = (reduced?, unreduced?);
+    if reduced.rows != unreduced.rows {
+        return Err(ToolError::malformed(
+            &unreduced.path,
+            format!("{} rows, but the reduced run has {}", unreduced.rows, reduced.rows),
+        ));
+    }
+    let rows = reduced.rows;
+    let table = dir.join(TABLE);
+    let temporary = plot::Temporary::for_target(&table);
+    let mut writer = csv::Writer::from_path(temporary.path()).map_err(|e| ToolError::write(&table, e))?;
+    let header = std::iter::once("t".to_owned())
+        .chain(names.iter().map(|n| format!("d_{n}")))
+        .chain(["d_discrete_energy".to_owned()]);
+    writer.write_record(header).map_err(|e| ToolError::write(&table, e))?;
+
+    let mut max_q = vec![0.0f64; names.len()];
+    let mut max_ld: Option<f64> = None;
+    let mut dq: Vec<Envelope> = names.iter().map(|_| Envelope::new(rows)).collect();
+    let (mut ld_reduced, mut ld_unreduced, mut d_ld) = (Envelope::new(rows), Envelope::new(rows), Envelope::new(rows));
+    let (mut a, mut b) = (reduced.rows()?, unreduced.rows()?);
+    let mut fields: Vec<String> = vec![];
+    while let (Some(r), Some(u)) = (a.next()?, b.next()?) {
+        if (r.t - u.t).abs() > 1e-9 * r.t.abs().max(1.0) {
+            return Err(ToolError::malformed(
+                &unreduced.path,
+                format!("t = {} where the reduced run has t = {}", u.t, r.t),
+            ));
+        }
+        fields.clear();
+        fields.push(r.t.to_string());
+        for (i, c) in coordinates.iter().enumerate() {
+            let mut d = r.q[i] - u.q[i];
+            // Wrapping only what exceeds π keeps tiny differences exact (wrap(−1e−18) rounds to 0).
+            if c.kind == CoordinateKind::Angle && d.abs() > std::f64::consts::PI {
+                d = ddirac::chart::wrap(d);
+            }
+            max_q[i] = max_q[i].max(d.abs());
+            dq[i].push(r.t, Some(d));
+            fields.push(d.to_string());
+        }
+        let d = r.discrete_energy.zip(u.discrete_energy).map(|(x, y)| x - y);
+        if let Some(d) = d {
+            max_ld = Some(max_ld.unwrap_or(0.0).max(d.abs()));
+        }
+        ld_reduced.push(r.t, r.discrete_energy);
+        ld_unreduced.push(r.t, u.discrete_energy);
+        d_ld.push(r.t, d);
+        fields.push(d.map_or(String::new(), |d| d.to_string()));
+        writer.write_record(&fields).map_err(|e| ToolError::write(&table, e))?;
+    }
+    writer.flush().map_err(|source| ToolError::Write { path: table.clone(), source })?;
+    drop(writer);
+    temporary.commit(&table)?;
+
+    let mut panels = vec![];
+    if max_ld.is_some() {
+        panels.push(Panel::new(
+            "t",
+            "L_d(q_k, q_k+1)",
+            vec![
+                Series::named("reduced", ld_reduced.finish()),
+                Series { dashed: true, ..Series::named("unreduced", ld_unreduced.finish()) },
+            ],
+        ));
+        panels.push(
+            Panel::new("t", "ΔL_d", vec![Series::line(d_ld.finish())]).caption("discrete energy, reduced − unreduced"),
+        );
+    }
+    let series = names.iter().zip(dq).map(|(n, e)| Series::named(format!("Δ{n}"), e.finish())).collect();
+    panels.push(Panel::new("t", "Δq", series).caption("coordinates, reduced − unreduced"));
+    let summary = RunSummary::read(&dir.join(RUNS[0]))?;
+    let figure = Figure::new("compare", format!("{}: reduced and unreduced runs", summary.system), panels)
+        .subtitle(summary.description.replace(", reduced", ""));
+    Ok(Differences { coordinates: names.into_iter().zip(max_q).collect(), discrete_energy: max_ld, figure, summary })
+}
+
+/// The text printed after a comparison.
+fn report(summary: &RunSummary, dir: &Path, walls: &[f64], d: &Differences, figures: usize) -> String {
+    let path = |name: &str| -> PathBuf { dir.join(name) };
+    let largest: Vec<String> = d.coordinates.iter().map(|(n, v)| format!("{n} {v:.3e}")).collect();
+    let (reduced, unreduced) = (walls[0], walls[1]);
+    let mut lines = vec![
+        format!("{}: reduced and unreduced runs of {}", summary.system, summary.description.replace(", reduced", "")),
+        format!("  reduced          {reduced:.3} s integrating, output {}", path(RUNS[0]).display()),
+        format!("  unreduced        {unreduced:.3} s integrating, output {}", path(RUNS[1]).display()),
+        format!("  time ratio       unreduced / reduced = {:.3}", unreduced / reduced.max(f64::MIN_POSITIVE)),
+        format!("  max |difference| {}", largest.join(", ")),
+    ];
+    if let Some(ld) = d.discrete_energy {
+        lines.push(format!("                   discrete energy L_d {ld:.3e}"));
+    }
+    lines.push(format!("  table            {}", path(TABLE).display()));
+    lines.push(format!("  figures          {figures} (PNG and SVG), compare.png in {}", dir.display()));
+    lines.join("\n")
+}
