@@ -145,8 +145,8 @@ fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, To
             "t",
             "L_d(q_k, q_k+1)",
             vec![
+                Series { wide: true, ..Series::named("unreduced", ld_unreduced.finish()) },
                 Series::named("reduced", ld_reduced.finish()),
-                Series { dashed: true, ..Series::named("unreduced", ld_unreduced.finish()) },
             ],
         ));
         panels.push(

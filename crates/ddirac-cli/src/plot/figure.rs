@@ -85,12 +85,14 @@ pub struct Series {
     pub markers: bool,
     /// Draw the line dashed (reference lines).
     pub dashed: bool,
+    /// Draw the line wide and pale, so that a line drawn over it stays visible where they coincide.
+    pub wide: bool,
 }
 
 impl Series {
     /// A plain unnamed line.
     pub fn line(points: Vec<(f64, f64)>) -> Self {
-        Self { name: None, points, markers: false, dashed: false }
+        Self { name: None, points, markers: false, dashed: false, wide: false }
     }
 
     /// A named line.
@@ -342,7 +344,11 @@ fn draw_panel<DB: DrawingBackend>(
             mesh.draw().map_err(e)?;
             for (i, series) in panel.series.iter().enumerate() {
                 let color = PALETTE[i % PALETTE.len()];
-                let style = ShapeStyle::from(&color).stroke_width(2);
+                let style = if series.wide {
+                    ShapeStyle::from(&color.mix(0.4)).stroke_width(7)
+                } else {
+                    ShapeStyle::from(&color).stroke_width(2)
+                };
                 let points = series.points.iter().filter_map(|p| frame.map(p));
                 let drawn = if series.dashed {
                     chart.draw_series(DashedLineSeries::new(points, 12, 8, style)).map_err(e)?
