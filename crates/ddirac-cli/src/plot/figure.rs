@@ -274,7 +274,7 @@ impl Frame {
                     let (half, c) = (0.5 * dy * w / h, 0.5 * (x.0 + x.1));
                     ((c - half, c + half), y)
                 };
-                (Axis::linear(&panel.x_label, x, 0.0, X_TICKS), Axis::linear(&panel.y_label, y, 0.0, Y_TICKS))
+                (Axis::linear(&panel.x_label, x, 0.0, X_TICKS), Axis::linear(&panel.y_label, y, 0.0, X_TICKS))
             }
         };
         Self { x, y }
@@ -356,7 +356,14 @@ fn draw_panel<DB: DrawingBackend>(
                     chart.draw_series(LineSeries::new(points, style)).map_err(e)?
                 };
                 if let Some(name) = &series.name {
-                    drawn.label(name.as_str()).legend(move |(x, y)| PathElement::new([(x, y), (x + 24, y)], style));
+                    let dot = series.markers && series.points.len() == 1;
+                    drawn.label(name.as_str()).legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
+                        if dot {
+                            Circle::new((x + 12, y), 5, color.filled()).into_dyn()
+                        } else {
+                            PathElement::new([(x, y), (x + 24, y)], style).into_dyn()
+                        }
+                    });
                 }
                 if series.markers {
                     let dots =

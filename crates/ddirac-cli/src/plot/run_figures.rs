@@ -142,7 +142,10 @@ pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile) -> Result<
     if let (Some(phi1), Some((_, _, path))) = (phi1, path) {
         let panel = Panel::new("t", "φ₁", vec![Series::line(phi1)]);
         figures.push(titled("phi1", format!("{system}: φ₁(t)"), vec![panel]));
-        let panel = Panel::new("x", "y", vec![Series::line(path.finish())]).scale(Scale::Equal);
+        let path = path.finish();
+        let start = path.first().map(|&p| Series { markers: true, ..Series::named("start", vec![p]) });
+        let series = std::iter::once(Series::named("second mass", path)).chain(start).collect();
+        let panel = Panel::new("x", "y", series).scale(Scale::Equal);
         let mut figure =
             titled("second_bob_path", format!("{system}: second mass, projection on the (x, y) plane"), vec![panel]);
         figure.panel_height = 1000;
