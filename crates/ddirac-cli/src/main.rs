@@ -6,6 +6,7 @@
 //! ```
 
 mod diagnostics;
+mod npy;
 mod output;
 mod overrides;
 mod report;
@@ -41,6 +42,10 @@ enum Command {
         /// Print nothing on success.
         #[arg(long, short)]
         quiet: bool,
+        /// Trajectory formats, comma-separated: `csv` (trajectory.csv), `npy` (npy/<column>.npy)
+        /// [default: output.format of the spec, else csv].
+        #[arg(long, value_delimiter = ',', value_name = "FORMATS")]
+        format: Vec<output::Format>,
     },
     /// List the built-in systems with their coordinates and default parameters.
     Systems,
@@ -49,7 +54,7 @@ enum Command {
 fn main() -> ExitCode {
     let command = Cli::parse().command;
     let result = match command {
-        Command::Run { spec, out, set, quiet } => run::run(&run::RunOptions { spec, out, set, quiet }),
+        Command::Run { spec, out, set, quiet, format } => run::run(&run::RunOptions { spec, out, set, quiet, format }),
         Command::Systems => {
             print!("{}", systems());
             Ok(())

@@ -20,6 +20,8 @@ pub struct RunOptions {
     pub set: Vec<String>,
     /// `--quiet`.
     pub quiet: bool,
+    /// `--format` (empty: `output.format` of the spec, else CSV).
+    pub format: Vec<output::Format>,
 }
 
 /// Runs a spec; on success the output directory holds `trajectory.csv` and `summary.json`.
@@ -36,6 +38,7 @@ pub fn run(options: &RunOptions) -> Result<(), CliError> {
     };
     let spec = spec::parse(&source)?;
     let plan = spec::validate(&source, &spec)?;
+    let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
 
     let dir = match (&options.out, &plan.directory) {
         (Some(out), _) => out.clone(),
@@ -46,7 +49,7 @@ pub fn run(options: &RunOptions) -> Result<(), CliError> {
         }
     };
     let created = !dir.exists();
-    let result = write_run(&source, &plan, path, &dir, started);
+    let result = write_run(&source, &plan, path, &dir, formats, started);
     if result.is_err() && created {
         let _ = std::fs::remove_dir(&dir);
     }
@@ -63,6 +66,7 @@ fn write_run(
     plan: &spec::Plan,
     spec: &Path,
     dir: &Path,
+    formats: output::Formats,
     started: Instant,
 ) -> Result<String, CliError> {
     let io = |source| CliError::Output { dir: dir.to_owned(), source };
@@ -70,16 +74,17 @@ fn write_run(
     let coordinates = plan.system.coordinates();
     let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
     let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
-    let mut trajectory = Trajectory::create(dir, &names, &group).map_err(io)?;
+    let mut trajectory = Trajectory::create(dir, &names, &group, formats).map_err(io)?;
     let summary = plan
         .system
         .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| Ok(trajectory.write(row)?))
         .map_err(|e| library_error(source, plan, dir, e))?;
-    let staged = trajectory.finish().map_err(io)?;
+    let mut staged = trajectory.finish().map_err(io)?;
     let total = started.elapsed().as_secs_f64();
     let json = report::summary_json(plan, &summary, spec, total);
     let summary_file = output::json(dir, "summary.json", &json).map_err(io)?;
-    output::commit(vec![staged, summary_file]).map_err(io)?;
+    staged.push(summary_file);
+    output::commit(staged).map_err(io)?;
     Ok(report::human(plan, &summary, dir, total))
 }
 
