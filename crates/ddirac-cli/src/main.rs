@@ -2,13 +2,20 @@
 //!
 //! ```text
 //! ddirac run SPEC.toml [--out DIR] [--set KEY=VALUE]... [--quiet]
+//! ddirac run SPEC.toml --compare [--out DIR] [--set KEY=VALUE]... [--quiet]
+//! ddirac convergence SPEC.toml --steps 10,50,100,200 [--out DIR] [--set KEY=VALUE]... [--quiet]
+//! ddirac plot DIR [--quiet]
 //! ddirac systems
 //! ```
 
+mod compare;
+mod convergence;
 mod diagnostics;
 mod npy;
 mod output;
 mod overrides;
+mod plot;
+mod progress;
 mod report;
 mod run;
 mod spec;
@@ -46,6 +53,37 @@ enum Command {
         /// [default: output.format of the spec, else csv].
         #[arg(long, value_delimiter = ',', value_name = "FORMATS")]
         format: Vec<output::Format>,
+        /// Run the spec twice, reduced and unreduced, into DIR/reduced and DIR/unreduced, and write
+        /// their differences to DIR/compare.csv with a figure.
+        #[arg(long)]
+        compare: bool,
+    },
+    /// Run a spec with several step counts over its duration and tabulate the error and the
+    /// observed order; writes convergence.csv and a log-log figure.
+    Convergence {
+        /// The TOML spec (see examples/).
+        spec: PathBuf,
+        /// Step counts N, comma-separated, e.g. `10,50,100,200`.
+        #[arg(long, value_delimiter = ',', required = true, num_args = 1.., value_name = "N,...",
+              value_parser = clap::value_parser!(u64).range(1..))]
+        steps: Vec<u64>,
+        /// Output directory [default: output.directory of the spec, else out/<spec file stem>].
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Override one spec value before it is read (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Print nothing on success.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Draw the figures (PNG and SVG) of a finished run from DIR/trajectory.csv and DIR/summary.json.
+    Plot {
+        /// The output directory of `ddirac run`.
+        dir: PathBuf,
+        /// Print nothing on success.
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// List the built-in systems with their coordinates and default parameters.
     Systems,
@@ -53,8 +91,24 @@ enum Command {
 
 fn main() -> ExitCode {
     let command = Cli::parse().command;
-    let result = match command {
-        Command::Run { spec, out, set, quiet, format } => run::run(&run::RunOptions { spec, out, set, quiet, format }),
+    // Long messages stay on one line, so that they can be searched for in logs. A report takes its
+    // handler when it is made, so the hook is set before any command runs.
+    let _ = miette::set_hook(Box::new(|_| {
+        Box::new(miette::MietteHandlerOpts::new().wrap_lines(false).terminal_links(false).build())
+    }));
+    let result: Result<(), miette::Report> = match command {
+        Command::Run { spec, out, set, quiet, format, compare } => {
+            let options = run::RunOptions { spec, out, set, quiet, format };
+            if compare {
+                compare::compare(&options)
+            } else {
+                run::run(&options).map_err(Into::into)
+            }
+        }
+        Command::Convergence { spec, steps, out, set, quiet } => {
+            convergence::convergence(&convergence::Options { spec, steps, out, set, quiet })
+        }
+        Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),
         Command::Systems => {
             print!("{}", systems());
             Ok(())
@@ -63,11 +117,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            // Long messages stay on one line, so that they can be searched for in logs.
-            let _ = miette::set_hook(Box::new(|_| {
-                Box::new(miette::MietteHandlerOpts::new().wrap_lines(false).terminal_links(false).build())
-            }));
-            eprintln!("{:?}", miette::Report::new(error));
+            eprintln!("{error:?}");
             ExitCode::FAILURE
         }
     }

@@ -8,7 +8,8 @@ use ddirac::Role;
 
 use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
-use crate::{overrides, report, spec};
+use crate::progress::Progress;
+use crate::{overrides, plot, report, spec};
 
 /// Options of `ddirac run`.
 pub struct RunOptions {
@@ -28,47 +29,77 @@ pub struct RunOptions {
 pub fn run(options: &RunOptions) -> Result<(), CliError> {
     let started = Instant::now();
     let path = &options.spec;
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.clone(), source })?;
-    let original = SpecSource::new(path.display().to_string(), text);
-    let source = if options.set.is_empty() {
-        original
-    } else {
-        let edited = overrides::apply(&original, &options.set)?;
-        SpecSource::new(format!("{} (with --set)", path.display()), edited)
-    };
-    let spec = spec::parse(&source)?;
-    let plan = spec::validate(&source, &spec)?;
+    let Loaded { source, spec, plan } = load(path, &options.set)?;
     let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
 
-    let dir = match (&options.out, &plan.directory) {
-        (Some(out), _) => out.clone(),
-        (None, Some(d)) => PathBuf::from(d),
-        (None, None) => {
-            let stem = path.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
-            Path::new("out").join(stem)
-        }
-    };
+    let dir = output_dir(options.out.as_deref(), &plan, path);
     let created = !dir.exists();
-    let result = write_run(&source, &plan, path, &dir, formats, started);
+    let mut progress = Progress::new(plan.problem.steps as u64, options.quiet);
+    let result = write_run(&source, &plan, path, &dir, formats, started, &mut progress);
+    progress.finish();
     if result.is_err() && created {
         let _ = std::fs::remove_dir(&dir);
     }
-    let summary_text = result?;
+    let (_, mut summary_text) = result?;
+    if spec.output.plots.as_ref().is_some_and(|p| *p.get_ref()) {
+        let figures = plot::plot_run(&dir)
+            .map_err(|e| CliError::Output { dir: dir.clone(), source: std::io::Error::other(e) })?;
+        summary_text.push_str(&format!("\n  figures          {} (PNG and SVG)", figures.len() / 2));
+    }
     if !options.quiet {
         println!("{summary_text}");
     }
     Ok(())
 }
 
-/// Integrates and writes both files; returns the human summary.
-fn write_run(
+/// A spec read, with its `--set` overrides applied, parsed and validated.
+pub struct Loaded {
+    /// The spec text that diagnostics quote.
+    pub source: SpecSource,
+    /// The parsed spec.
+    pub spec: spec::Spec,
+    /// The validated spec.
+    pub plan: spec::Plan,
+}
+
+/// Reads the spec at `path`, applies `set` and validates it.
+pub fn load(path: &Path, set: &[String]) -> Result<Loaded, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.to_owned(), source })?;
+    let original = SpecSource::new(path.display().to_string(), text);
+    let source = if set.is_empty() {
+        original
+    } else {
+        let edited = overrides::apply(&original, set)?;
+        SpecSource::new(format!("{} (with --set)", path.display()), edited)
+    };
+    let spec = spec::parse(&source)?;
+    let plan = spec::validate(&source, &spec)?;
+    Ok(Loaded { source, spec, plan })
+}
+
+/// The output directory: `--out`, else `output.directory` of the spec, else `out/<spec file stem>`.
+pub fn output_dir(out: Option<&Path>, plan: &spec::Plan, spec: &Path) -> PathBuf {
+    match (out, &plan.directory) {
+        (Some(out), _) => out.to_owned(),
+        (None, Some(d)) => PathBuf::from(d),
+        (None, None) => {
+            let stem = spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("out").join(stem)
+        }
+    }
+}
+
+/// Integrates and writes the output files, reporting each row to `progress`; returns the summary
+/// and its human text.
+pub fn write_run(
     source: &SpecSource,
     plan: &spec::Plan,
     spec: &Path,
     dir: &Path,
     formats: output::Formats,
     started: Instant,
-) -> Result<String, CliError> {
+    progress: &mut Progress,
+) -> Result<(ddirac::Summary, String), CliError> {
     let io = |source| CliError::Output { dir: dir.to_owned(), source };
     std::fs::create_dir_all(dir).map_err(io)?;
     let coordinates = plan.system.coordinates();
@@ -77,7 +108,10 @@ fn write_run(
     let mut trajectory = Trajectory::create(dir, &names, &group, formats).map_err(io)?;
     let summary = plan
         .system
-        .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| Ok(trajectory.write(row)?))
+        .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| {
+            progress.update(row.k);
+            Ok(trajectory.write(row)?)
+        })
         .map_err(|e| library_error(source, plan, dir, e))?;
     let mut staged = trajectory.finish().map_err(io)?;
     let total = started.elapsed().as_secs_f64();
@@ -85,7 +119,8 @@ fn write_run(
     let summary_file = output::json(dir, "summary.json", &json).map_err(io)?;
     staged.push(summary_file);
     output::commit(staged).map_err(io)?;
-    Ok(report::human(plan, &summary, dir, total))
+    let text = report::human(plan, &summary, dir, total);
+    Ok((summary, text))
 }
 
 /// A library error as a diagnostic: pointing at the spec value it concerns when there is one.

@@ -12,7 +12,7 @@
 //!               tolerance = 1e-12  max_iterations = 50  check_invariance = true
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
-//! [output]      directory = "out/cp"  every = 1  wrap_angles = false  format = ["csv", "npy"]
+//! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
 //! ```
 //!
 //! The schema keeps every value [`Spanned`], so that [`validate`] can point at the text of any value
@@ -208,6 +208,8 @@ pub struct OutputSpec {
     pub wrap_angles: Option<Spanned<bool>>,
     /// Trajectory formats: `["csv"]` (default), `["npy"]` or both.
     pub format: Option<Spanned<Vec<crate::output::Format>>>,
+    /// Draw the run's figures (PNG and SVG) into the output directory (default false).
+    pub plots: Option<Spanned<bool>>,
 }
 
 /// Parses the spec text, reporting syntax errors, unknown keys and wrong types at their span.
