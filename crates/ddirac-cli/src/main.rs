@@ -5,9 +5,11 @@
 //! ddirac run SPEC.toml --compare [--out DIR] [--set KEY=VALUE]... [--quiet]
 //! ddirac convergence SPEC.toml --steps 10,50,100,200 [--out DIR] [--set KEY=VALUE]... [--quiet]
 //! ddirac plot DIR [--quiet]
+//! ddirac check SPEC.toml [--set KEY=VALUE]...
 //! ddirac systems
 //! ```
 
+mod check;
 mod compare;
 mod convergence;
 mod diagnostics;
@@ -85,6 +87,15 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Check a spec without integrating: invariance of L_d, connection axioms, Legendre rank and the
+    /// primary constraint; exits non-zero when a run of the spec's method would be refused.
+    Check {
+        /// The TOML spec (see examples/).
+        spec: PathBuf,
+        /// Override one spec value before it is read (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
     /// List the built-in systems with their coordinates and default parameters.
     Systems,
 }
@@ -109,6 +120,7 @@ fn main() -> ExitCode {
             convergence::convergence(&convergence::Options { spec, steps, out, set, quiet })
         }
         Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),
+        Command::Check { spec, set } => check::check(&check::CheckOptions { spec, set }).map_err(Into::into),
         Command::Systems => {
             print!("{}", systems());
             Ok(())

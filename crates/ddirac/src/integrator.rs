@@ -213,15 +213,8 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 let q = config.output(self.output.wrap_angles);
                 let e = legendre::hamiltonian(self.system, config.base(), &p);
                 energy.push(e);
-                let row = Row {
-                    k,
-                    t,
-                    q: &q,
-                    p: &p,
-                    energy: e,
-                    discrete_energy: Some(last.discrete_energy),
-                    momentum_map: j,
-                };
+                let row =
+                    Row { k, t, q: &q, p: &p, energy: e, discrete_energy: Some(last.discrete_energy), momentum_map: j };
                 observer(&row).map_err(Error::Output)?;
             }
 
