@@ -35,7 +35,7 @@ pub enum Error {
     /// Newton's method failed on a step.
     #[error(
         "step {step} (t = {t}): Newton's method failed after {iterations} iteration(s): {reason} \
-         (residual {residual:.3e}); try a smaller step or a looser tolerance"
+         (residual {residual:.3e}); {}", reason.hint()
     )]
     Newton {
         /// Index k of the step q_k → q_{k+1}.

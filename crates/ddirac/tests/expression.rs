@@ -710,3 +710,20 @@ fn large_integer_exponents_have_exact_derivatives() {
     assert_close(d1, term(n, 1) - term(m, 1) + term(k, 1), 1e-12, "first derivative");
     assert_close(d2, term(n, 2) - term(m, 2) + term(k, 2), 1e-12, "second derivative");
 }
+
+#[test]
+fn pi_is_predefined_unless_the_spec_names_it() {
+    use ddirac::expression::{ExpressionSpec, ExpressionSystem};
+    use ddirac::{Coordinate, System};
+    let spec = |parameters: Vec<(String, f64)>| ExpressionSpec {
+        coordinates: vec![Coordinate::shape("x")],
+        lagrangian: "pi * x_dot^2".into(),
+        definitions: vec![],
+        parameters,
+        exact_solution: vec![],
+    };
+    let system = ExpressionSystem::<1>::new(&spec(vec![])).unwrap();
+    assert_eq!(system.lagrangian(&[0.0], &[1.0]), std::f64::consts::PI);
+    let system = ExpressionSystem::<1>::new(&spec(vec![("pi".into(), 3.0)])).unwrap();
+    assert_eq!(system.lagrangian(&[0.0], &[1.0]), 3.0);
+}

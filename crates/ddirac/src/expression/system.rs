@@ -5,7 +5,8 @@
 //! each other). A Lagrangian is autonomous: `t` is reserved and not available in it. Exact solutions,
 //! if given, are expressions in `t` and the parameters only: the initial data q0, p0 of the problem
 //! are *not* available in them, so an exact solution holds for one problem's initial data and must be
-//! written for it.
+//! written for it. The constant `pi` is predefined unless a coordinate, parameter or definition takes
+//! the name.
 
 use super::compile::closest;
 use super::{ExpressionError, Origin, Program, Scope, FUNCTIONS};
@@ -150,6 +151,15 @@ fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
         exact = exact.unavailable(&name, "an exact solution depends on `t` and the parameters only");
     }
     lagrangian = lagrangian.unavailable("t", "a Lagrangian does not depend on time (`t` is for exact solutions)");
+    let declared = |name: &str| {
+        names().any(|n| n == name)
+            || spec.parameters.iter().any(|(n, _)| n == name)
+            || spec.definitions.iter().any(|(n, _)| n == name)
+    };
+    if !declared("pi") {
+        lagrangian = lagrangian.constant("pi", std::f64::consts::PI);
+        exact = exact.constant("pi", std::f64::consts::PI);
+    }
     for (name, value) in &spec.parameters {
         lagrangian = lagrangian.constant(name, *value);
         exact = exact.constant(name, *value);
