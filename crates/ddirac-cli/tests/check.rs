@@ -1,11 +1,11 @@
 //! `ddirac check`: the report (invariance, connection, Legendre rank, primary constraint) and the
 //! exit status, which is non-zero exactly when a run of the spec's method would be refused.
 
-mod spec_harness;
+mod common;
 
 use std::process::Output;
 
-use spec_harness::{check, example, TempDir};
+use common::{check, example, TempDir};
 
 fn stdout(output: &Output) -> String {
     String::from_utf8_lossy(&output.stdout).into_owned()

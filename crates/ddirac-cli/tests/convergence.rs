@@ -2,9 +2,11 @@
 //! for a system without exact solution, the refusal of a study that cannot be made, and a quiet
 //! stderr.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
+
+use common::{ddirac, TempDir};
+
+use std::process::Output;
 
 const CHARGED_PARTICLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/charged_particle.toml");
 const PENDULUM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/double_spherical_pendulum.toml");
@@ -12,34 +14,6 @@ const PENDULUM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/doub
 /// Paper, Table 1: ‖q(T) − q_N‖ for N = 10, 50, 100, 200, with the digits printed there.
 const TABLE_1: [(u64, f64, f64); 4] =
     [(10, 1.6781, 5e-5), (50, 0.25971, 5e-6), (100, 0.06626, 5e-6), (200, 0.01664, 5e-6)];
-
-/// A fresh directory under the system's temporary directory, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> Self {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-        let path = std::env::temp_dir().join(format!("ddirac-convergence-{}-{n}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path).unwrap();
-        Self(path)
-    }
-
-    fn out(&self) -> PathBuf {
-        self.0.join("out")
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn ddirac(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ddirac")).args(args).current_dir(cwd).output().unwrap()
-}
 
 fn convergence(spec: &str, steps: &str, extra: &[&str], dir: &TempDir) -> Output {
     let out = dir.out();

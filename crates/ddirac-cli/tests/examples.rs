@@ -2,11 +2,11 @@
 //! code: the paper's Table 1, the built-in systems, Kepler's laws, conservation laws computed from the
 //! initial data, and the exact motion of two point vortices.
 
-mod spec_harness;
+mod common;
 
 use std::f64::consts::PI;
 
-use spec_harness::{assert_fails, example, numbers, run, succeed, Finished, TempDir};
+use common::{assert_fails, example, numbers, run, succeed, Finished, TempDir};
 
 /// max |a − b| / max(1, |b|) over the entries.
 fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
@@ -269,8 +269,8 @@ fn reducing_point_vortices_is_refused_before_anything_is_written() {
         &dir,
         &["not invariant under translation of the group coordinate `X`", "more than the tolerance 1e-9"],
     );
-    assert_eq!(spec_harness::underlined(&stderr, "reduced = true"), ["true"]);
-    assert_eq!(spec_harness::underlined(&stderr, "group = [\"X\"]"), ["\"X\""]);
+    assert_eq!(common::underlined(&stderr, "reduced = true"), ["true"]);
+    assert_eq!(common::underlined(&stderr, "group = [\"X\"]"), ["\"X\""]);
     // Without the check, the reduced Newton matrix is singular: an error that says so, no NaNs written.
     assert_fails(
         &run(&example("point_vortices.toml"), &["method.reduced=true", "method.check_invariance=false"], &dir),

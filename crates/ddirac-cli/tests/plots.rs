@@ -1,9 +1,12 @@
 //! `ddirac plot DIR` and `output.plots = true`: which figures are written, that they are real PNG
 //! and SVG files with their axis names, and the pendulum's own figures (paper §7.2).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
+
+use common::{ddirac, TempDir};
+
+use std::path::Path;
+use std::process::Output;
 
 const CHARGED_PARTICLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/charged_particle.toml");
 const PENDULUM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/double_spherical_pendulum.toml");
@@ -11,34 +14,6 @@ const PENDULUM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/doub
 /// The figures of every run, and those only the double spherical pendulum has.
 const RUN_FIGURES: [&str; 4] = ["coordinates", "energy_error", "momentum_map", "discrete_energy"];
 const PENDULUM_FIGURES: [&str; 2] = ["phi1", "second_bob_path"];
-
-/// A fresh directory under the system's temporary directory, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> Self {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-        let path = std::env::temp_dir().join(format!("ddirac-plots-{}-{n}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path).unwrap();
-        Self(path)
-    }
-
-    fn out(&self) -> PathBuf {
-        self.0.join("out")
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn ddirac(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ddirac")).args(args).current_dir(cwd).output().unwrap()
-}
 
 fn succeed(args: &[&str], cwd: &Path) -> Output {
     let output = ddirac(args, cwd);

@@ -2,9 +2,9 @@
 //! the coordinate lists are reported at the characters they concern (the tests read the underlined
 //! characters back from the report), and initial values may be given by coordinate name.
 
-mod spec_harness;
+mod common;
 
-use spec_harness::{assert_fails, example, run, succeed, underlined, TempDir};
+use common::{assert_fails, example, run, succeed, underlined, TempDir};
 
 /// A small system: a particle on a line in a potential well, with one definition.
 const WELL: &str = r#"

@@ -1,4 +1,4 @@
-//! Helpers shared by the tests of specs, `ddirac check` and the shipped examples: running the binary
+//! Helpers shared by the command-line tests: running the binary
 //! in a temporary directory, reading its output files, and reading miette's labels back from stderr.
 
 // Each test crate uses a different subset of these helpers.
