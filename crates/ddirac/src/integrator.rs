@@ -16,6 +16,7 @@ use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
+use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::Scheme;
 use crate::{
     newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
@@ -62,8 +63,8 @@ pub fn integrate<S: System<N>, const N: usize>(
         if method.check_invariance {
             check_invariance(&ld, &setup.split, &setup.q0, &setup.dq0)?;
         }
-        let scheme =
-            LagrangePoincareDirac { ld, connection: &setup.connection, split: &setup.split, variant: method.variant };
+        let reduction = ReducedLagrangian::new(system, method.rule, problem.step, setup.connection.clone())?;
+        let scheme = LagrangePoincareDirac { reduction, variant: method.variant };
         run.go(&scheme, method, observer)
     } else {
         run.go(&LagrangeDirac { ld }, method, observer)

@@ -32,14 +32,13 @@
 use nalgebra::{SMatrix, SVector};
 use num_dual::{partial_hessian, DualNum, HyperDualSVec64};
 
+use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Evaluation, Scheme};
-use crate::{Connection, DiscreteLagrangian, Split, System, Variant};
+use crate::{System, Variant};
 
-/// The reduced scheme of one variant.
+/// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
 pub(crate) struct LagrangePoincareDirac<'a, S> {
-    pub ld: DiscreteLagrangian<'a, S>,
-    pub connection: &'a Connection,
-    pub split: &'a Split,
+    pub reduction: ReducedLagrangian<'a, S>,
     pub variant: Variant,
 }
 
@@ -51,40 +50,21 @@ pub(crate) struct ReducedDerivatives<const N: usize> {
     pub dadb: SMatrix<f64, N, N>,
 }
 
-impl<'a, S> LagrangePoincareDirac<'a, S> {
-    /// Σ_i K[j, i] (u_i − v_i) over the shape coordinates, for group row j.
-    fn k_times<D: DualNum<Primitive = f64> + Copy, const N: usize>(&self, j: usize, u: &[D; N], v: &[D; N]) -> D {
-        let mut acc = D::from(0.0);
-        for (i, &si) in self.split.shape.iter().enumerate() {
-            let kji = self.connection.entry(j, i);
-            if kji != 0.0 {
-                acc += (u[si] - v[si]) * kji;
-            }
-        }
-        acc
-    }
-
+impl<S> LagrangePoincareDirac<'_, S> {
     /// l̂(a, b): the reduced Lagrangian l± with x0 = x_k + a_x, x1 = x_k + b_x, γ = b_γ + a_γ.
     pub(crate) fn lhat<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        let zero = D::from(0.0);
-        let mut d0 = [zero; N];
-        let mut d1 = [zero; N];
-        for &si in &self.split.shape {
-            d0[si] = a[si];
-            d1[si] = b[si];
+        let mut shifted = *a;
+        for &gj in &self.reduction.split.group {
+            shifted[gj] = a[gj] + b[gj];
         }
-        for (j, &gj) in self.split.group.iter().enumerate() {
-            let gamma = b[gj] + a[gj];
-            match self.variant {
-                Variant::Plus => d1[gj] = gamma + self.k_times(j, b, a),
-                Variant::Minus => d0[gj] = gamma + self.k_times(j, a, b),
-            }
+        match self.variant {
+            Variant::Plus => self.reduction.l_plus_local(base, &shifted, b),
+            Variant::Minus => self.reduction.l_minus_local(base, &shifted, b),
         }
-        self.ld.eval_local(base, &d0, &d1)
     }
 
     pub(crate) fn derivatives<const N: usize>(&self, base: &[f64; N], z: &SVector<f64, N>) -> ReducedDerivatives<N>
@@ -101,18 +81,30 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
     }
 
     fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
-        self.split.shape.iter().enumerate().map(|(i, &si)| self.connection.entry(j, i) * dx_full[si]).sum()
+        self.reduction
+            .split
+            .shape
+            .iter()
+            .enumerate()
+            .map(|(i, &si)| self.reduction.connection.entry(j, i) * dx_full[si])
+            .sum()
     }
 
     fn kt_mu(&self, i: usize, mu_full: &[f64]) -> f64 {
-        self.split.group.iter().enumerate().map(|(j, &gj)| self.connection.entry(j, i) * mu_full[gj]).sum()
+        self.reduction
+            .split
+            .group
+            .iter()
+            .enumerate()
+            .map(|(j, &gj)| self.reduction.connection.entry(j, i) * mu_full[gj])
+            .sum()
     }
 }
 
 impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
     fn base(&self, q: &[f64; N]) -> [f64; N] {
         let mut base = *q;
-        for &gj in &self.split.group {
+        for &gj in &self.reduction.split.group {
             base[gj] = 0.0;
         }
         base
@@ -123,12 +115,12 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         let mut residual = SVector::from(*wm) + d.da;
         let mut jacobian = d.dadb;
         let mut momenta_next = *wm;
-        for &si in &self.split.shape {
+        for &si in &self.reduction.split.shape {
             momenta_next[si] = d.db[si];
         }
         if self.variant == Variant::Plus {
             // μ_k − ∂l₊/∂γ = 0
-            for &gj in &self.split.group {
+            for &gj in &self.reduction.split.group {
                 residual[gj] = wm[gj] - d.da[gj];
                 jacobian.row_mut(gj).neg_mut();
             }
@@ -138,7 +130,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {
         let mut dq: [f64; N] = (*z).into();
-        for (j, &gj) in self.split.group.iter().enumerate() {
+        for (j, &gj) in self.reduction.split.group.iter().enumerate() {
             let gamma = match self.variant {
                 Variant::Plus => z[gj],
                 Variant::Minus => -z[gj],
@@ -150,7 +142,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
 
     fn unknowns(&self, dq: &[f64; N]) -> SVector<f64, N> {
         let mut z = SVector::from(*dq);
-        for (j, &gj) in self.split.group.iter().enumerate() {
+        for (j, &gj) in self.reduction.split.group.iter().enumerate() {
             let gamma = dq[gj] - self.k_dx(j, dq);
             z[gj] = match self.variant {
                 Variant::Plus => gamma,
@@ -162,7 +154,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
 
     fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N] {
         let mut wm = *p;
-        for (i, &si) in self.split.shape.iter().enumerate() {
+        for (i, &si) in self.reduction.split.shape.iter().enumerate() {
             wm[si] = p[si] + self.kt_mu(i, p);
         }
         wm
@@ -170,7 +162,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
 
     fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
         let mut p = *wm;
-        for (i, &si) in self.split.shape.iter().enumerate() {
+        for (i, &si) in self.reduction.split.shape.iter().enumerate() {
             p[si] = wm[si] - self.kt_mu(i, wm);
         }
         p

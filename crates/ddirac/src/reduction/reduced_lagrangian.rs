@@ -146,8 +146,29 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         ))
     }
 
-    /// l₊ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·).
+    /// l₊ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·);
+    /// the group entries of b are not read.
     pub(crate) fn l_plus<D, const N: usize>(&self, a: &[D; N], b: &[D; N]) -> D
+    where
+        S: System<N>,
+        D: DualNum<Primitive = f64> + Copy,
+    {
+        self.l_plus_local(&[0.0; N], a, b)
+    }
+
+    /// l₋ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·);
+    /// the group entries of b are not read.
+    pub(crate) fn l_minus<D, const N: usize>(&self, a: &[D; N], b: &[D; N]) -> D
+    where
+        S: System<N>,
+        D: DualNum<Primitive = f64> + Copy,
+    {
+        self.l_minus_local(&[0.0; N], a, b)
+    }
+
+    /// [`Self::l_plus`] in the chart centred at `base` (x0 = base + a_x, x1 = base + b_x; the group
+    /// entries of `base` are the chart's g = 0), see [`DiscreteLagrangian::eval_local`].
+    pub(crate) fn l_plus_local<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
@@ -159,11 +180,11 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         for (j, &gj) in self.split.group.iter().enumerate() {
             q1[gj] = a[gj] + self.k_row(j, b, a);
         }
-        self.ld.eval(&q0, &q1)
+        self.ld.eval_local(base, &q0, &q1)
     }
 
-    /// l₋ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·).
-    pub(crate) fn l_minus<D, const N: usize>(&self, a: &[D; N], b: &[D; N]) -> D
+    /// [`Self::l_minus`] in the chart centred at `base`.
+    pub(crate) fn l_minus_local<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
@@ -175,7 +196,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         for (j, &gj) in self.split.group.iter().enumerate() {
             q0[gj] = a[gj] + self.k_row(j, a, b);
         }
-        self.ld.eval(&q0, &q1)
+        self.ld.eval_local(base, &q0, &q1)
     }
 
     /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks.
@@ -185,11 +206,14 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         u: &[D; N],
         v: &[D; N],
     ) -> D {
-        self.split
-            .shape
-            .iter()
-            .enumerate()
-            .fold(D::from(0.0), |acc, (i, &si)| acc + (u[si] - v[si]) * self.connection.entry(j, i))
+        let mut acc = D::from(0.0);
+        for (i, &si) in self.split.shape.iter().enumerate() {
+            let kji = self.connection.entry(j, i);
+            if kji != 0.0 {
+                acc += (u[si] - v[si]) * kji;
+            }
+        }
+        acc
     }
 
     /// Packs a shape vector and a group vector at the coordinates' positions (missing entries `zero`).
