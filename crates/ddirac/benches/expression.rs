@@ -6,46 +6,13 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use ddirac::expression::{ExpressionSpec, ExpressionSystem};
+use ddirac::expression::ExpressionSystem;
 use ddirac::systems::DoubleSphericalPendulum;
-use ddirac::{Coordinate, DiscreteLagrangian, Rule};
+use ddirac::{DiscreteLagrangian, Rule};
 
-/// The Lagrangian of the module doc of `ddirac::systems::double_spherical_pendulum`, with
-/// θ1 = ϑ1 − ϑ2 and θ2 = ϑ1 + ϑ2.
-fn spec() -> ExpressionSpec {
-    let string = |s: &str| s.to_owned();
-    let cross = "phi1_dot*phi2_dot*sin(phi1)*sin(phi2) + phi1_dot*phi2_dot*cos(phi1)*cos(phi2)*cos(theta1 - theta2) \
-                 + phi1_dot*theta2_dot*sin(phi2)*sin(theta1 - theta2)*cos(phi1) \
-                 - phi2_dot*theta1_dot*sin(phi1)*sin(theta1 - theta2)*cos(phi2) \
-                 + theta1_dot*theta2_dot*sin(phi1)*sin(phi2)*cos(theta1 - theta2)";
-    let t2 = format!(
-        "0.5*m2*(l1^2*phi1_dot^2 + l2^2*phi2_dot^2 + l1^2*theta1_dot^2*sin(phi1)^2 \
-         + l2^2*theta2_dot^2*sin(phi2)^2 + 2*l1*l2*({cross}))"
-    );
-    ExpressionSpec {
-        coordinates: vec![
-            Coordinate::group("vartheta1").angle(),
-            Coordinate::shape("phi1").angle(),
-            Coordinate::shape("vartheta2").angle(),
-            Coordinate::shape("phi2").angle(),
-        ],
-        lagrangian: string(
-            "0.5*l1^2*m1*(phi1_dot^2 + theta1_dot^2*sin(phi1)^2) + T2 \
-             - g*m1*l1*cos(phi1) - g*m2*(l1*cos(phi1) + l2*cos(phi2))",
-        ),
-        definitions: vec![
-            (string("theta1"), string("vartheta1 - vartheta2")),
-            (string("theta2"), string("vartheta1 + vartheta2")),
-            (string("theta1_dot"), string("vartheta1_dot - vartheta2_dot")),
-            (string("theta2_dot"), string("vartheta1_dot + vartheta2_dot")),
-            (string("T2"), t2),
-        ],
-        parameters: [("m1", 20.0), ("m2", 35.0), ("l1", 500.0), ("l2", 800.0), ("g", 9.8)]
-            .map(|(n, v)| (string(n), v))
-            .to_vec(),
-        exact_solution: vec![],
-    }
-}
+#[path = "../tests/common/pendulum_text.rs"]
+mod pendulum_text;
+use pendulum_text::double_spherical_pendulum_spec as spec;
 
 fn derivatives(c: &mut Criterion) {
     let rust = DoubleSphericalPendulum::default();
