@@ -9,6 +9,9 @@ use ddirac::reduction::trivialization::SplitVector;
 use ddirac::systems::{ChargedParticle, TwoBody};
 use ddirac::{solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Split, System, Variant};
 
+mod common;
+use common::sampler;
+
 /// One step of a trajectory in split form: (x_k, g_k, w_k, μ_k) and the same at k + 1.
 struct Point {
     x: Vec<f64>,
@@ -169,17 +172,6 @@ fn two_body_minus_run_satisfies_the_corrected_equations_only() {
     eprintln!("two bodies (−): Dirac {dirac:.2e}, corrected {corrected:.2e}, printed (min) {printed:.2e}");
     assert!(dirac < TOLERANCE && corrected < TOLERANCE);
     assert!(printed > 0.5, "the printed eq:geometricequationsminus must fail on every step");
-}
-
-/// Deterministic pseudo-random numbers in [−1, 1).
-fn sampler(seed: u64) -> impl FnMut() -> f64 {
-    let mut state = seed;
-    move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
 }
 
 fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> ReducedLagrangian<'a, TwoBody> {

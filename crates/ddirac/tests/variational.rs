@@ -14,6 +14,9 @@ use ddirac::{
     solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Solution, Split, System, Variant,
 };
 
+mod common;
+use common::sampler;
+
 const STATIONARY: f64 = 1e-9;
 
 fn run<S: System<4>>(system: &S, problem: &Problem, method: &Method) -> Solution {
@@ -208,17 +211,6 @@ fn reduced_energies_are_the_energies_in_trivialized_coordinates() {
         )
         .unwrap();
         assert!((e - reduced).abs() < 1e-13 * e.abs().max(1.0), "{signs:?}: E_d− = {e}, e_d− = {reduced}");
-    }
-}
-
-/// Deterministic pseudo-random numbers in [−1, 1).
-fn sampler(seed: u64) -> impl FnMut() -> f64 {
-    let mut state = seed;
-    move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     }
 }
 
