@@ -25,7 +25,7 @@ mod spec;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 
 /// Structure-preserving integrators for Lagrangian systems with abelian symmetry, after
 /// "Discrete Dirac reduction of implicit Lagrangian systems with abelian symmetry groups".
@@ -36,21 +36,35 @@ struct Cli {
     command: Command,
 }
 
+/// A spec and the overrides applied to it.
+#[derive(Debug, Args)]
+struct SpecInput {
+    /// The TOML spec (see examples/).
+    spec: PathBuf,
+    /// Override one spec value before it is read, e.g. `method.reduced=false` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+}
+
+/// A spec to run, where its output goes, and how talkative the run is.
+#[derive(Debug, Args)]
+struct SpecTarget {
+    #[command(flatten)]
+    input: SpecInput,
+    /// Output directory [default: output.directory of the spec, else out/<spec file stem>].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Print nothing on success.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Integrate the problem of a spec file; writes trajectory.csv and summary.json.
     Run {
-        /// The TOML spec (see examples/).
-        spec: PathBuf,
-        /// Output directory [default: output.directory of the spec, else out/<spec file stem>].
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Override one spec value before it is read, e.g. `method.reduced=false` (repeatable).
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-        /// Print nothing on success.
-        #[arg(long, short)]
-        quiet: bool,
+        #[command(flatten)]
+        target: SpecTarget,
         /// Trajectory formats, comma-separated: `csv` (trajectory.csv), `npy` (npy/<column>.npy)
         /// [default: output.format of the spec, else csv].
         #[arg(long, value_delimiter = ',', value_name = "FORMATS")]
@@ -63,21 +77,12 @@ enum Command {
     /// Run a spec with several step counts over its duration and tabulate the error and the
     /// observed order; writes convergence.csv and a log-log figure.
     Convergence {
-        /// The TOML spec (see examples/).
-        spec: PathBuf,
+        #[command(flatten)]
+        target: SpecTarget,
         /// Step counts N, comma-separated, e.g. `10,50,100,200`.
         #[arg(long, value_delimiter = ',', required = true, num_args = 1.., value_name = "N,...",
               value_parser = clap::value_parser!(u64).range(1..))]
         steps: Vec<u64>,
-        /// Output directory [default: output.directory of the spec, else out/<spec file stem>].
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Override one spec value before it is read (repeatable).
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-        /// Print nothing on success.
-        #[arg(long, short)]
-        quiet: bool,
     },
     /// Draw the figures (PNG and SVG) of a finished run from DIR/trajectory.csv and DIR/summary.json.
     Plot {
@@ -90,11 +95,8 @@ enum Command {
     /// Check a spec without integrating: invariance of L_d, connection axioms, Legendre rank and the
     /// primary constraint; exits non-zero when a run of the spec's method would be refused.
     Check {
-        /// The TOML spec (see examples/).
-        spec: PathBuf,
-        /// Override one spec value before it is read (repeatable).
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
+        #[command(flatten)]
+        input: SpecInput,
     },
     /// List the built-in systems with their coordinates and default parameters.
     Systems,
@@ -108,7 +110,7 @@ fn main() -> ExitCode {
         Box::new(miette::MietteHandlerOpts::new().wrap_lines(false).terminal_links(false).build())
     }));
     let result: Result<(), miette::Report> = match command {
-        Command::Run { spec, out, set, quiet, format, compare } => {
+        Command::Run { target: SpecTarget { input: SpecInput { spec, set }, out, quiet }, format, compare } => {
             let options = run::RunOptions { spec, out, set, quiet, format };
             if compare {
                 compare::compare(&options)
@@ -116,11 +118,13 @@ fn main() -> ExitCode {
                 run::run(&options).map_err(Into::into)
             }
         }
-        Command::Convergence { spec, steps, out, set, quiet } => {
+        Command::Convergence { target: SpecTarget { input: SpecInput { spec, set }, out, quiet }, steps } => {
             convergence::convergence(&convergence::Options { spec, steps, out, set, quiet })
         }
         Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),
-        Command::Check { spec, set } => check::check(&check::CheckOptions { spec, set }).map_err(Into::into),
+        Command::Check { input: SpecInput { spec, set } } => {
+            check::check(&check::CheckOptions { spec, set }).map_err(Into::into)
+        }
         Command::Systems => {
             print!("{}", systems());
             Ok(())
