@@ -98,6 +98,7 @@ struct MomentumMapJson<'a> {
 #[derive(Serialize)]
 struct NewtonJson {
     total_iterations: usize,
+    total_jacobians: usize,
     max_iterations: usize,
     max_residual: f64,
 }
@@ -139,6 +140,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         },
         newton: NewtonJson {
             total_iterations: summary.newton.total_iterations,
+            total_jacobians: summary.newton.total_jacobians,
             max_iterations: summary.newton.max_iterations,
             max_residual: summary.newton.max_residual,
         },
@@ -181,8 +183,11 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
         format!("  energy           [{:.10e}, {:.10e}] (relative spread {spread:.3e})", e.min, e.max),
         momentum_map(&summary.momentum_map),
         format!(
-            "  newton           {} iterations in total, at most {} per step, largest residual {:.3e}",
-            summary.newton.total_iterations, summary.newton.max_iterations, summary.newton.max_residual
+            "  newton           {} iterations in total, at most {} per step, {} Jacobians, largest residual {:.3e}",
+            summary.newton.total_iterations,
+            summary.newton.max_iterations,
+            summary.newton.total_jacobians,
+            summary.newton.max_residual
         ),
         format!("  reference error  {reference}"),
         format!("  output           {}", dir.display()),

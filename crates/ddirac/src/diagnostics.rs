@@ -84,6 +84,9 @@ pub struct MomentumMapDrift {
 pub struct NewtonSummary {
     /// Sum of Newton corrections over all steps.
     pub total_iterations: usize,
+    /// Sum of Jacobian evaluations over all steps (one per correction with classical Newton, far
+    /// fewer with a kept Jacobian; see [`crate::NewtonOptions::reuse_jacobian`]).
+    pub total_jacobians: usize,
     /// Largest number of corrections in one step.
     pub max_iterations: usize,
     /// Largest accepted residual norm.

@@ -188,8 +188,8 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             let base = scheme.base(config.base());
             let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let mut last = None;
-            let stats = newton::solve(&mut z, scale, &method.newton, |z| {
-                let e = scheme.evaluate(&base, &momenta, z);
+            let stats = newton::solve_with(&mut z, scale, &method.newton, |z, with_jacobian| {
+                let e = scheme.evaluate(&base, &momenta, z, with_jacobian);
                 last = Some(e);
                 (e.residual, e.jacobian)
             })
@@ -207,6 +207,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             }
             discrete_energy.push(last.discrete_energy);
             newton_summary.total_iterations += stats.iterations;
+            newton_summary.total_jacobians += stats.jacobians;
             newton_summary.max_iterations = newton_summary.max_iterations.max(stats.iterations);
             newton_summary.max_residual = newton_summary.max_residual.max(stats.residual);
 

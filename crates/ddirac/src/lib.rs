@@ -19,6 +19,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod ad;
 pub mod baselines;
 pub mod chart;
 mod check;

@@ -1,4 +1,5 @@
-//! Dense linear solves on fixed-size matrices by Gaussian elimination with full pivoting.
+//! Dense linear solves on fixed-size matrices by Gaussian elimination with full pivoting; the
+//! factorization can be kept and reused for several right-hand sides.
 //!
 //! Written for `SMatrix<f64, N, N>` with a const `N` (nalgebra's factorizations need type-level
 //! dimension bounds that const generics cannot name) and allocation-free.
@@ -9,60 +10,90 @@ use nalgebra::{SMatrix, SVector};
 /// unknowns are set to 0 and the returned rank is below N (for a consistent singular system this is
 /// one of its solutions). Returns `None` if `a` is zero or non-finite.
 pub(crate) fn solve<const N: usize>(
-    mut a: SMatrix<f64, N, N>,
-    mut b: SVector<f64, N>,
+    a: SMatrix<f64, N, N>,
+    b: SVector<f64, N>,
     rel_tol: f64,
 ) -> Option<(SVector<f64, N>, usize)> {
-    let scale = a.amax();
-    if !(scale.is_finite() && scale > 0.0) {
-        return None;
-    }
-    let threshold = rel_tol * scale;
-    let mut col_of = [0usize; N];
-    for (i, c) in col_of.iter_mut().enumerate() {
-        *c = i;
-    }
-    let mut rank = 0;
-    for k in 0..N {
-        let (mut pr, mut pc, mut best) = (k, k, 0.0);
-        for r in k..N {
-            for c in k..N {
-                if a[(r, c)].abs() > best {
-                    (pr, pc, best) = (r, c, a[(r, c)].abs());
-                }
-            }
+    let lu = Factorization::new(a, rel_tol)?;
+    Some((lu.solve(&b), lu.rank))
+}
+
+/// P A Q = L U with full pivoting, kept to solve several right-hand sides.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Factorization<const N: usize> {
+    /// U on and above the diagonal, the multipliers of L below it (first `rank` columns).
+    lu: SMatrix<f64, N, N>,
+    /// Row k of the factorization is row `row_of[k]` of A.
+    row_of: [usize; N],
+    /// Column k of the factorization is column `col_of[k]` of A.
+    col_of: [usize; N],
+    /// Number of pivots above the threshold.
+    pub rank: usize,
+}
+
+impl<const N: usize> Factorization<N> {
+    /// Factorizes `a`; pivots below `rel_tol · max|a|` end the elimination (rank < N). `None` if `a`
+    /// is zero or non-finite.
+    pub(crate) fn new(mut a: SMatrix<f64, N, N>, rel_tol: f64) -> Option<Self> {
+        let scale = a.amax();
+        if !(scale.is_finite() && scale > 0.0) {
+            return None;
         }
-        if best <= threshold {
-            break;
-        }
-        a.swap_rows(k, pr);
-        b.swap_rows(k, pr);
-        a.swap_columns(k, pc);
-        col_of.swap(k, pc);
-        for r in k + 1..N {
-            let f = a[(r, k)] / a[(k, k)];
-            if f != 0.0 {
+        let threshold = rel_tol * scale;
+        let mut row_of: [usize; N] = std::array::from_fn(|i| i);
+        let mut col_of = row_of;
+        let mut rank = 0;
+        for k in 0..N {
+            let (mut pr, mut pc, mut best) = (k, k, 0.0);
+            for r in k..N {
                 for c in k..N {
-                    a[(r, c)] -= f * a[(k, c)];
+                    if a[(r, c)].abs() > best {
+                        (pr, pc, best) = (r, c, a[(r, c)].abs());
+                    }
                 }
-                b[r] -= f * b[k];
+            }
+            if best <= threshold {
+                break;
+            }
+            a.swap_rows(k, pr);
+            row_of.swap(k, pr);
+            a.swap_columns(k, pc);
+            col_of.swap(k, pc);
+            for r in k + 1..N {
+                let f = a[(r, k)] / a[(k, k)];
+                a[(r, k)] = f;
+                if f != 0.0 {
+                    for c in k + 1..N {
+                        a[(r, c)] -= f * a[(k, c)];
+                    }
+                }
+            }
+            rank += 1;
+        }
+        Some(Self { lu: a, row_of, col_of, rank })
+    }
+
+    /// A solution of `a x = b` (unknowns beyond the rank set to 0).
+    pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
+        let mut y: SVector<f64, N> = SVector::from_fn(|k, _| b[self.row_of[k]]);
+        for k in 0..self.rank {
+            for r in k + 1..N {
+                y[r] -= self.lu[(r, k)] * y[k];
             }
         }
-        rank += 1;
-    }
-    let mut y = SVector::<f64, N>::zeros();
-    for k in (0..rank).rev() {
-        let mut s = b[k];
-        for c in k + 1..rank {
-            s -= a[(k, c)] * y[c];
+        for k in (0..self.rank).rev() {
+            let mut s = y[k];
+            for c in k + 1..self.rank {
+                s -= self.lu[(k, c)] * y[c];
+            }
+            y[k] = s / self.lu[(k, k)];
         }
-        y[k] = s / a[(k, k)];
+        let mut x = SVector::<f64, N>::zeros();
+        for k in 0..self.rank {
+            x[self.col_of[k]] = y[k];
+        }
+        x
     }
-    let mut x = SVector::<f64, N>::zeros();
-    for k in 0..N {
-        x[col_of[k]] = y[k];
-    }
-    Some((x, rank))
 }
 
 #[cfg(test)]
@@ -85,5 +116,17 @@ mod tests {
         let (x, rank) = solve(a, b, 1e-12).unwrap();
         assert_eq!(rank, 1);
         assert!((a * x - b).amax() < 1e-14);
+    }
+
+    #[test]
+    fn a_kept_factorization_solves_new_right_hand_sides() {
+        let a =
+            SMatrix::<f64, 4, 4>::from_fn(|i, j| 1.0 / (1.0 + i as f64 + j as f64) + if i == j { 0.5 } else { 0.0 });
+        let lu = Factorization::new(a, 1e-14).unwrap();
+        assert_eq!(lu.rank, 4);
+        for k in 0..4 {
+            let x = SVector::<f64, 4>::from_fn(|i, _| (i as f64 + 1.0) * (k as f64 - 1.5));
+            assert!((lu.solve(&(a * x)) - x).amax() < 1e-13);
+        }
     }
 }

@@ -1,10 +1,20 @@
 //! Newton's method for a square nonlinear system `r(z) = 0` with Jacobian `J(z)`.
 //!
-//! The solver knows no mechanics: a scheme hands it a closure that evaluates the residual and the
-//! Jacobian at a point, and it returns the root together with the iteration count and the residual
-//! norm, or a [`NewtonFailure`] saying why it stopped.
+//! The solver knows no mechanics: a scheme hands it a closure that evaluates the residual, and the
+//! Jacobian when asked, at a point; it returns the root together with the iteration count and the
+//! residual norm, or a [`NewtonFailure`] saying why it stopped.
+//!
+//! [`solve_with`] runs either classical Newton (a fresh Jacobian at every iterate) or the chord
+//! variant (the default): the Jacobian is evaluated and factorized at the starting point only and
+//! reused for the later corrections of the same solve, unless a correction fails to reduce the
+//! residual by [`CONTRACTION`], in which case it is re-evaluated. From a good predictor the starting
+//! point is within a small δ of the root, so the kept Jacobian differs from the exact one by O(δ) and
+//! the iterates converge as fast as classical Newton's in practice; both stop on the same test. A
+//! residual without its Jacobian costs a fraction of one with it (see `ad`).
 
 use nalgebra::{SMatrix, SVector};
+
+use crate::linalg::Factorization;
 
 /// Tolerance and iteration limit of the Newton solver.
 ///
@@ -19,13 +29,19 @@ pub struct NewtonOptions {
     pub tolerance: f64,
     /// Largest number of Newton corrections before the step is declared failed.
     pub max_iterations: usize,
+    /// Evaluate the Jacobian once per solve and reuse it while the residual contracts (chord
+    /// Newton); `false` evaluates it at every iterate (classical Newton).
+    pub reuse_jacobian: bool,
 }
 
 impl Default for NewtonOptions {
     fn default() -> Self {
-        Self { tolerance: 1e-12, max_iterations: 50 }
+        Self { tolerance: 1e-12, max_iterations: 50, reuse_jacobian: true }
     }
 }
+
+/// A reused Jacobian is replaced when a correction reduces ‖r‖∞ by less than this factor.
+pub const CONTRACTION: f64 = 0.25;
 
 /// What the solver reports on success.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +50,8 @@ pub struct NewtonStats {
     pub iterations: usize,
     /// `‖r‖∞` at the accepted point.
     pub residual: f64,
+    /// Number of Jacobians evaluated and factorized.
+    pub jacobians: usize,
 }
 
 /// Why the solver stopped without a root.
@@ -82,7 +100,7 @@ pub struct NewtonFailure {
     pub residual: f64,
 }
 
-/// Solves `r(z) = 0` starting from `z`, which holds the root on success.
+/// Solves `r(z) = 0` by classical Newton starting from `z`, which holds the root on success.
 ///
 /// `eval(z)` returns the residual and its Jacobian. `residual_scale` sets the units of the residual
 /// test (see [`NewtonOptions::tolerance`]).
@@ -104,31 +122,99 @@ pub fn solve<const N: usize>(
     options: &NewtonOptions,
     mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
 ) -> Result<NewtonStats, NewtonFailure> {
+    let options = NewtonOptions { reuse_jacobian: false, ..*options };
+    solve_with(z, residual_scale, &options, |z, _| {
+        let (r, j) = eval(z);
+        (r, Some(j))
+    })
+}
+
+/// Solves `r(z) = 0` starting from `z`, which holds the root on success, by classical or chord
+/// Newton ([`NewtonOptions::reuse_jacobian`]).
+///
+/// `eval(z, with_jacobian)` returns the residual, and the Jacobian when `with_jacobian` is true.
+/// The last call is always at the returned root. `residual_scale` sets the units of the residual
+/// test (see [`NewtonOptions::tolerance`]).
+///
+/// ```
+/// use nalgebra::{SMatrix, SVector};
+/// // z³ = 2 from z = 1.2: one Jacobian serves every correction.
+/// let mut z = SVector::<f64, 1>::new(1.2);
+/// let stats = ddirac::newton::solve_with(&mut z, 1.0, &Default::default(), |z, with_jacobian| {
+///     let r = SVector::<f64, 1>::new(z[0].powi(3) - 2.0);
+///     (r, with_jacobian.then(|| SMatrix::<f64, 1, 1>::new(3.0 * z[0] * z[0])))
+/// })
+/// .unwrap();
+/// assert!((z[0] - 2f64.cbrt()).abs() < 1e-14);
+/// assert_eq!(stats.jacobians, 1);
+/// ```
+pub fn solve_with<const N: usize>(
+    z: &mut SVector<f64, N>,
+    residual_scale: f64,
+    options: &NewtonOptions,
+    mut eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
+) -> Result<NewtonStats, NewtonFailure> {
     let threshold = options.tolerance * residual_scale.max(1.0);
-    let mut iterations = 0;
-    let mut small_correction = false;
-    loop {
-        let (r, jac) = eval(z);
+    let (mut iterations, mut jacobians) = (0, 0);
+    let mut kept: Option<Factorization<N>> = None;
+    let mut evaluate = |kept: &mut Option<Factorization<N>>, z: &SVector<f64, N>, with_jacobian: bool, iterations| {
+        let (r, jac) = eval(z, with_jacobian);
         let residual = r.amax();
-        if !residual.is_finite() || jac.iter().any(|x| !x.is_finite()) {
+        let finite = residual.is_finite() && jac.as_ref().is_none_or(|j| j.iter().all(|x| x.is_finite()));
+        if !finite {
             let residual = if residual.is_finite() { residual } else { f64::NAN };
             return Err(NewtonFailure { reason: FailureReason::NonFinite, iterations, residual });
         }
+        if let Some(j) = jac {
+            *kept = Factorization::new(j, 1e-14);
+        }
+        Ok((r, residual))
+    };
+    let (mut r, mut residual) = evaluate(&mut kept, z, true, iterations)?;
+    let (mut fresh, mut small_correction) = (true, false);
+    // Whether the last correction used a reused Jacobian, and whether it was the final polish.
+    let (mut stale, mut polished) = (false, false);
+    jacobians += 1;
+    loop {
         if residual <= threshold || small_correction {
-            return Ok(NewtonStats { iterations, residual });
+            // A reused Jacobian converges linearly, so the first iterate to pass the test is only just
+            // within it; one more correction brings it to round-off like a classical Newton step.
+            if !stale || polished || iterations >= options.max_iterations {
+                return Ok(NewtonStats { iterations, residual, jacobians });
+            }
+            polished = true;
         }
         if iterations >= options.max_iterations {
             return Err(NewtonFailure { reason: FailureReason::NotConverged, iterations, residual });
         }
-        let delta = crate::linalg::solve(jac, r, 1e-14)
-            .filter(|(d, rank)| *rank == N && d.iter().all(|x| x.is_finite()))
-            .map(|(d, _)| d);
+        let delta = kept.filter(|lu| lu.rank == N).map(|lu| lu.solve(&r)).filter(|d| d.iter().all(|x| x.is_finite()));
         let Some(delta) = delta else {
-            return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
+            if fresh {
+                return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
+            }
+            // The reused Jacobian does not fit here: evaluate one at this iterate and retry.
+            (r, residual) = evaluate(&mut kept, z, true, iterations)?;
+            (fresh, jacobians) = (true, jacobians + 1);
+            continue;
         };
+        let (previous_z, previous) = (*z, residual);
         *z -= delta;
         iterations += 1;
         small_correction = delta.amax() <= options.tolerance * (1.0 + z.amax());
+        stale = !fresh;
+        fresh = !options.reuse_jacobian;
+        let trial = evaluate(&mut kept, z, fresh, iterations);
+        jacobians += usize::from(fresh);
+        let contracted = matches!(trial, Ok((_, res)) if res <= threshold || res <= CONTRACTION * previous);
+        if stale && !contracted && !polished {
+            // A reused Jacobian that does not contract the residual (or leads out of the domain):
+            // undo the correction and evaluate the Jacobian where it started.
+            *z = previous_z;
+            (r, residual) = evaluate(&mut kept, z, true, iterations)?;
+            (fresh, jacobians, small_correction) = (true, jacobians + 1, false);
+            continue;
+        }
+        (r, residual) = trial?;
     }
 }
 

@@ -11,8 +11,8 @@ use nalgebra::{SMatrix, SVector};
 pub(crate) struct Evaluation<const N: usize> {
     /// The residual r(z).
     pub residual: SVector<f64, N>,
-    /// Its Jacobian ∂r/∂z.
-    pub jacobian: SMatrix<f64, N, N>,
+    /// Its Jacobian ∂r/∂z, when it was asked for.
+    pub jacobian: Option<SMatrix<f64, N, N>>,
     /// L_d(q_k, q_{k+1}) at the trial point (the paper's discrete energy).
     pub discrete_energy: f64,
     /// The scheme momenta at k + 1 if z is accepted.
@@ -27,8 +27,8 @@ pub(crate) trait Scheme<const N: usize> {
     /// The chart base for a step from a configuration whose chart base is `q`.
     fn base(&self, q: &[f64; N]) -> [f64; N];
 
-    /// Residual, Jacobian and by-products at the trial unknowns `z`.
-    fn evaluate(&self, base: &[f64; N], momenta: &[f64; N], z: &SVector<f64, N>) -> Evaluation<N>;
+    /// Residual, by-products and, if `with_jacobian`, the Jacobian at the trial unknowns `z`.
+    fn evaluate(&self, base: &[f64; N], momenta: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N>;
 
     /// The configuration increment q_{k+1} − q_k produced by the unknowns `z` (reconstruction).
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N];

@@ -150,7 +150,7 @@ fn non_invariant_lagrangian_is_refused_naming_the_coordinate() {
 #[test]
 fn newton_failures_are_errors_naming_the_step() {
     // No iterations allowed: the first step cannot converge (the predictor h·v0 is not a root).
-    let method = Method { newton: NewtonOptions { tolerance: 1e-12, max_iterations: 0 }, ..reduced() };
+    let method = Method { newton: NewtonOptions { max_iterations: 0, ..NewtonOptions::default() }, ..reduced() };
     let e = run_err(&DoubleSphericalPendulum::default(), &DoubleSphericalPendulum::paper_problem(100), &method);
     assert!(matches!(&e, Error::Newton { step: 0, iterations: 0, .. }), "{e:?}");
     assert!(e.to_string().contains("step 0 (t = 0)"), "{e}");

@@ -9,7 +9,7 @@
 //! [system.exact]        x = "sin(t)"          # exact solution, in `t` and the parameters
 //! [parameters]  m = 1.0                       # overrides of the defaults, or the constants of L
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
-//!               tolerance = 1e-12  max_iterations = 50  check_invariance = true
+//!               tolerance = 1e-12  max_iterations = 50  jacobian = "reuse"  check_invariance = true
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
@@ -132,6 +132,9 @@ pub struct MethodSpec {
     pub tolerance: Option<Number>,
     /// Newton iteration limit.
     pub max_iterations: Option<Spanned<i64>>,
+    /// `reuse` (default: chord Newton, one Jacobian per step while it contracts) or `fresh`
+    /// (classical Newton, a new Jacobian at every iterate).
+    pub jacobian: Option<Spanned<String>>,
     /// Check the invariance of L_d before a reduced run (default true).
     pub check_invariance: Option<Spanned<bool>>,
 }

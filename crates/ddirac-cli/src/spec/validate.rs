@@ -269,6 +269,20 @@ fn method(
         }
         None => defaults.newton.max_iterations,
     };
+    let reuse_jacobian = match &m.jacobian {
+        Some(j) => match j.get_ref().as_str() {
+            "reuse" => true,
+            "fresh" => false,
+            other => {
+                return Err(source
+                    .error(Some(j.span()), format!("unknown Jacobian policy `{other}`"), "not a policy")
+                    .with_help(
+                    "`method.jacobian` is `reuse` (one Jacobian per step, chord Newton) or `fresh` (classical Newton)",
+                ))
+            }
+        },
+        None => defaults.newton.reuse_jacobian,
+    };
     spans.reduced = m.reduced.as_ref().map(|r| r.span());
     spans.connection = m.connection.as_ref().map(|c| c.span());
     let connection = m.connection.as_ref().map(|k| connection(source, k, coordinates)).transpose()?;
@@ -277,7 +291,7 @@ fn method(
         variant,
         reduced: m.reduced.as_ref().is_some_and(|r| *r.get_ref()),
         connection,
-        newton: NewtonOptions { tolerance, max_iterations },
+        newton: NewtonOptions { tolerance, max_iterations, reuse_jacobian },
         check_invariance: !matches!(&m.check_invariance, Some(c) if !*c.get_ref()),
     })
 }

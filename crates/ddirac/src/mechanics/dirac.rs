@@ -28,14 +28,16 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
         *q
     }
 
-    fn evaluate(&self, base: &[f64; N], p: &[f64; N], z: &SVector<f64, N>) -> Evaluation<N> {
-        let d = self.ld.derivatives_local(base, &SVector::zeros(), z);
-        Evaluation {
-            residual: SVector::from(*p) + d.d1,
-            jacobian: d.d1d2,
-            discrete_energy: d.value,
-            momenta_next: d.d2.into(),
-        }
+    fn evaluate(&self, base: &[f64; N], p: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
+        let zero = SVector::zeros();
+        let (value, d1, d2, jacobian) = if with_jacobian {
+            let d = self.ld.derivatives_local(base, &zero, z);
+            (d.value, d.d1, d.d2, Some(d.d1d2))
+        } else {
+            let d = self.ld.first_derivatives_local(base, &zero, z);
+            (d.value, d.da, d.db, None)
+        };
+        Evaluation { residual: SVector::from(*p) + d1, jacobian, discrete_energy: value, momenta_next: d2.into() }
     }
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {

@@ -13,7 +13,9 @@
 //! (paper §6, retraction-compatible charts).
 
 use nalgebra::{SMatrix, SVector};
-use num_dual::{partial_hessian, DualNum};
+use num_dual::DualNum;
+
+use crate::ad::{self, PairFunction};
 
 use crate::System;
 
@@ -102,9 +104,16 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         D: DualNum<Primitive = f64> + Copy,
     {
         let h = self.step;
-        let v: [D; N] = std::array::from_fn(|i| (d1[i] - d0[i]) * h.recip());
+        let mut v = *d1;
+        for (v, d0) in v.iter_mut().zip(d0) {
+            *v = (*v - *d0) * h.recip();
+        }
         let at = |weight0: f64, weight1: f64| -> [D; N] {
-            std::array::from_fn(|i| d0[i] * weight0 + d1[i] * weight1 + base[i])
+            let mut q = *d0;
+            for ((q, d1), base) in q.iter_mut().zip(d1).zip(base) {
+                *q = *q * weight0 + *d1 * weight1 + *base;
+            }
+            q
         };
         let l = |q: &[D; N]| self.system.lagrangian(q, &v);
         match self.rule {
@@ -133,8 +142,8 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         self.eval_local(&base, &[0.0; N], &d1)
     }
 
-    /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (base + δ0, base + δ1), in one pass of automatic
-    /// differentiation.
+    /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (base + δ0, base + δ1), by automatic differentiation
+    /// ([`ad::mixed`]).
     pub fn derivatives_local<const N: usize>(
         &self,
         base: &[f64; N],
@@ -144,9 +153,21 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
     where
         S: System<N>,
     {
-        let (value, d1_ld, d2_ld, d1d2) =
-            partial_hessian(|(a, b)| self.eval_local(base, &a.into(), &b.into()), (d0, d1));
-        Derivatives { value, d1: d1_ld, d2: d2_ld, d1d2 }
+        let d = ad::mixed(&Local { ld: self, base }, &(*d0).into(), &(*d1).into());
+        Derivatives { value: d.value, d1: d.da, d2: d.db, d1d2: d.dadb }
+    }
+
+    /// L_d, D1 L_d and D2 L_d at (base + δ0, base + δ1), without the mixed block ([`ad::first`]).
+    pub fn first_derivatives_local<const N: usize>(
+        &self,
+        base: &[f64; N],
+        d0: &SVector<f64, N>,
+        d1: &SVector<f64, N>,
+    ) -> ad::FirstDerivatives<N>
+    where
+        S: System<N>,
+    {
+        ad::first(&Local { ld: self, base }, &(*d0).into(), &(*d1).into())
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).
@@ -156,5 +177,17 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
     {
         let d1 = SVector::from(std::array::from_fn(|i| q1[i] - q0[i]));
         self.derivatives_local(q0, &SVector::zeros(), &d1)
+    }
+}
+
+/// L_d(base + δ0, base + δ1) as a function of the offsets (δ0, δ1).
+struct Local<'l, 'a, S, const N: usize> {
+    ld: &'l DiscreteLagrangian<'a, S>,
+    base: &'l [f64; N],
+}
+
+impl<S: System<N>, const N: usize> PairFunction<N> for Local<'_, '_, S, N> {
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+        self.ld.eval_local(self.base, a, b)
     }
 }

@@ -30,7 +30,9 @@
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
 use nalgebra::{SMatrix, SVector};
-use num_dual::{partial_hessian, DualNum, HyperDualSVec64};
+use num_dual::DualNum;
+
+use crate::ad::{self, PairFunction};
 
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Evaluation, Scheme};
@@ -42,12 +44,12 @@ pub(crate) struct LagrangePoincareDirac<'a, S> {
     pub variant: Variant,
 }
 
-/// ∂l/∂(x0, γ), ∂l/∂(x1, γ) and the mixed block, at the positions of the coordinates.
+/// ∂l/∂(x0, γ), ∂l/∂(x1, γ) and (if computed) the mixed block, at the positions of the coordinates.
 pub(crate) struct ReducedDerivatives<const N: usize> {
     pub value: f64,
     pub da: SVector<f64, N>,
     pub db: SVector<f64, N>,
-    pub dadb: SMatrix<f64, N, N>,
+    pub dadb: Option<SMatrix<f64, N, N>>,
 }
 
 impl<S> LagrangePoincareDirac<'_, S> {
@@ -71,13 +73,21 @@ impl<S> LagrangePoincareDirac<'_, S> {
     where
         S: System<N>,
     {
-        let (value, da, db, dadb) = partial_hessian(
-            |(a, b): (SVector<HyperDualSVec64<N, N>, N>, SVector<HyperDualSVec64<N, N>, N>)| {
-                self.lhat(base, &a.into(), &b.into())
-            },
-            (&SVector::zeros(), z),
-        );
-        ReducedDerivatives { value, da, db, dadb }
+        let d = ad::mixed(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into());
+        ReducedDerivatives { value: d.value, da: d.da, db: d.db, dadb: Some(d.dadb) }
+    }
+
+    /// [`Self::derivatives`] without the mixed block.
+    pub(crate) fn first_derivatives<const N: usize>(
+        &self,
+        base: &[f64; N],
+        z: &SVector<f64, N>,
+    ) -> ReducedDerivatives<N>
+    where
+        S: System<N>,
+    {
+        let d = ad::first(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into());
+        ReducedDerivatives { value: d.value, da: d.da, db: d.db, dadb: None }
     }
 
     fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
@@ -110,8 +120,8 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         base
     }
 
-    fn evaluate(&self, base: &[f64; N], wm: &[f64; N], z: &SVector<f64, N>) -> Evaluation<N> {
-        let d = self.derivatives(base, z);
+    fn evaluate(&self, base: &[f64; N], wm: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
+        let d = if with_jacobian { self.derivatives(base, z) } else { self.first_derivatives(base, z) };
         let mut residual = SVector::from(*wm) + d.da;
         let mut jacobian = d.dadb;
         let mut momenta_next = *wm;
@@ -122,7 +132,9 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
             // μ_k − ∂l₊/∂γ = 0
             for &gj in &self.reduction.split.group {
                 residual[gj] = wm[gj] - d.da[gj];
-                jacobian.row_mut(gj).neg_mut();
+                if let Some(j) = jacobian.as_mut() {
+                    j.row_mut(gj).neg_mut();
+                }
             }
         }
         Evaluation { residual, jacobian, discrete_energy: d.value, momenta_next }
@@ -166,5 +178,17 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
             p[si] = wm[si] - self.kt_mu(i, wm);
         }
         p
+    }
+}
+
+/// l̂(a, b) at a fixed base, as a function of the two blocks.
+struct Lhat<'l, 'a, S, const N: usize> {
+    scheme: &'l LagrangePoincareDirac<'a, S>,
+    base: &'l [f64; N],
+}
+
+impl<S: System<N>, const N: usize> PairFunction<N> for Lhat<'_, '_, S, N> {
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+        self.scheme.lhat(self.base, a, b)
     }
 }

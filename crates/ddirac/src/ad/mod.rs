@@ -1,0 +1,142 @@
+//! Forward-mode automatic differentiation for the step equations: the derivative blocks of a
+//! function f(a, b) of two argument blocks that a step needs, and nothing more.
+//!
+//! A step of every scheme differentiates one scalar function of two blocks: L_d(q0, q1) for the
+//! discrete Euler–Lagrange map (paper §2.3.2), l̂(a, b) for the reduced equations (§4.3–4.4). It needs
+//!
+//! - for the Newton Jacobian, the value, ∂f/∂a, ∂f/∂b and the mixed block ∂²f/∂a∂b ([`Mixed`]);
+//! - for a residual alone, the value, ∂f/∂a and ∂f/∂b ([`Gradient`]), a small fraction of the cost.
+//!
+//! Both are dual numbers over plain fixed-size arrays, so their arithmetic compiles to straight-line
+//! code without branches or copies of optional parts. They implement num-dual's [`DualNum`], so a
+//! user's Lagrangian, generic over `D: DualNum<Primitive = f64> + Copy`, runs on them unchanged.
+//!
+//! For many coordinates a single [`Mixed`] pass carries n² second-derivative entries per
+//! intermediate value; [`mixed`] then computes the mixed block in column chunks of [`CHUNK`] so that
+//! the intermediate values stay small (see BENCHMARKS.md for the measured crossover).
+
+mod gradient;
+mod jet;
+mod mixed;
+
+pub use gradient::Gradient;
+pub use mixed::Mixed;
+
+use nalgebra::{SMatrix, SVector};
+use num_dual::DualNum;
+
+/// Above this many coordinates the mixed block is computed in column chunks.
+pub const CROSSOVER: usize = 12;
+/// Columns of the mixed block per pass above [`CROSSOVER`].
+pub const CHUNK: usize = 4;
+
+/// A scalar function f(a, b) of two blocks of n arguments, generic over the scalar type.
+pub trait PairFunction<const N: usize> {
+    /// f(a, b).
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D;
+}
+
+/// f with its first derivatives and the mixed block at one point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MixedDerivatives<const N: usize> {
+    /// f(a, b).
+    pub value: f64,
+    /// ∂f/∂a.
+    pub da: SVector<f64, N>,
+    /// ∂f/∂b.
+    pub db: SVector<f64, N>,
+    /// ∂²f/∂a_i∂b_j at (i, j).
+    pub dadb: SMatrix<f64, N, N>,
+}
+
+/// f with its first derivatives at one point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstDerivatives<const N: usize> {
+    /// f(a, b).
+    pub value: f64,
+    /// ∂f/∂a.
+    pub da: SVector<f64, N>,
+    /// ∂f/∂b.
+    pub db: SVector<f64, N>,
+}
+
+/// Value, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b at (a, b).
+///
+/// ```
+/// use ddirac::ad::{mixed, PairFunction};
+/// use num_dual::DualNum;
+/// struct F;
+/// impl PairFunction<2> for F {
+///     fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; 2], b: &[D; 2]) -> D {
+///         a[0] * b[1].sin() + a[1] * a[1] * b[0]
+///     }
+/// }
+/// let d = mixed(&F, &[1.0, 2.0], &[3.0, 0.5]);
+/// assert!((d.value - (0.5f64.sin() + 12.0)).abs() < 1e-15);
+/// assert!((d.dadb[(0, 1)] - 0.5f64.cos()).abs() < 1e-15);
+/// assert_eq!(d.dadb[(1, 0)], 4.0);
+/// ```
+pub fn mixed<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+    if N <= CROSSOVER {
+        mixed_single_pass(f, a, b)
+    } else {
+        mixed_chunked(f, a, b)
+    }
+}
+
+/// Value, ∂f/∂a and ∂f/∂b at (a, b).
+///
+/// ```
+/// use ddirac::ad::{first, PairFunction};
+/// use num_dual::DualNum;
+/// struct F;
+/// impl PairFunction<1> for F {
+///     fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; 1], b: &[D; 1]) -> D {
+///         a[0] * a[0] * b[0].exp()
+///     }
+/// }
+/// let d = first(&F, &[3.0], &[0.0]);
+/// assert_eq!((d.value, d.da[0], d.db[0]), (9.0, 6.0, 9.0));
+/// ```
+pub fn first<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> FirstDerivatives<N> {
+    let (x, y) = Gradient::<N, N>::seed(a, b);
+    let r = f.eval(&x, &y);
+    FirstDerivatives { value: r.re, da: SVector::from(r.a), db: SVector::from(r.b) }
+}
+
+/// One pass with all n × n mixed entries.
+#[inline(never)]
+fn mixed_single_pass<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+    let (x, y) = Mixed::<N, N>::seed(a, b, 0);
+    let r = f.eval(&x, &y);
+    MixedDerivatives {
+        value: r.re,
+        da: SVector::from(r.a),
+        db: SVector::from(r.b),
+        dadb: SMatrix::from_fn(|i, j| r.ab[i][j]),
+    }
+}
+
+/// ⌈n / CHUNK⌉ passes, each with the mixed entries of CHUNK columns.
+#[inline(never)]
+fn mixed_chunked<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+    let mut out = MixedDerivatives { value: 0.0, da: SVector::zeros(), db: SVector::zeros(), dadb: SMatrix::zeros() };
+    for start in (0..N).step_by(CHUNK) {
+        let (x, y) = Mixed::<N, CHUNK>::seed(a, b, start);
+        let r = f.eval(&x, &y);
+        if start == 0 {
+            out.value = r.re;
+            out.da = SVector::from(r.a);
+        }
+        for c in 0..CHUNK.min(N - start) {
+            out.db[start + c] = r.b[c];
+            for i in 0..N {
+                out.dadb[(i, start + c)] = r.ab[i][c];
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

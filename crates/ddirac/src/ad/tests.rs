@@ -1,0 +1,113 @@
+//! The dual numbers against num-dual's `partial_hessian` on functions that use every operation.
+
+use nalgebra::SVector;
+use num_dual::{partial_hessian, DualNum, HyperDualSVec64};
+
+use super::*;
+
+/// Uses every arithmetic operator and elementary function on values where all are defined.
+struct Everything;
+
+impl PairFunction<3> for Everything {
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; 3], b: &[D; 3]) -> D {
+        let (x, y, z) = (a[0], a[1], a[2]);
+        let (u, v, w) = (b[0], b[1], b[2]);
+        let t1 = x * u + y / v - z * 2.0 + w / 3.0 + (x - w) * (y + u);
+        let t2 = (x * v).sin() + (y * w).cos() + (z + u).tan() * 0.1;
+        let (s, c) = (x - u).sin_cos();
+        let t3 = s * c + (x * x + v * v).sqrt() + (y * u).exp() * 0.01 + (z * z + w + 1.0).ln();
+        let t4 = (x * 0.3).asin() + (u * 0.2).acos() + (y * w).atan() + y.atan2(u + 2.0);
+        let t5 = (x * v).sinh() * 0.1 + (z * u).cosh() * 0.1 + (y * w).tanh();
+        let t6 = (x * u).asinh() + (v + 2.0).acosh() + (w * 0.4).atanh();
+        let t7 = (x + 2.0).powi(3) + (u + 2.0).powi(-2) + (y + 2.0).powf(2.5) + (v + 2.0).cbrt();
+        let t8 = (x * w).exp2() * 0.1 + (u + 2.0).log(3.0) + (v + 2.0).log2() + (w + 2.0).log10();
+        let t9 = (x * v).ln_1p() + (y * u).exp_m1() + (z - w).recip() + (x * u).sph_j0() + (y * v).sph_j1();
+        let t10 = (z * w).sph_j2()
+            + (x + u).abs()
+            + (y - w) * (z + v).signum()
+            + (x * x + 0.5).powd(u + 1.0)
+            + x.mul_add(u, v);
+        t1 + t2 + t3 + t4 + t5 + t6 + t7 + t8 + t9 + t10
+    }
+}
+
+fn reference<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+    let (value, da, db, dadb) = partial_hessian(
+        |(x, y): (SVector<HyperDualSVec64<N, N>, N>, SVector<HyperDualSVec64<N, N>, N>)| f.eval(&x.into(), &y.into()),
+        (&SVector::from(*a), &SVector::from(*b)),
+    );
+    MixedDerivatives { value, da, db, dadb }
+}
+
+fn close(x: f64, y: f64) -> bool {
+    (x - y).abs() <= 1e-13 * (1.0 + x.abs().max(y.abs()))
+}
+
+fn assert_same<const N: usize>(got: &MixedDerivatives<N>, want: &MixedDerivatives<N>) {
+    assert!(close(got.value, want.value), "value {} vs {}", got.value, want.value);
+    for i in 0..N {
+        assert!(close(got.da[i], want.da[i]), "da[{i}] {} vs {}", got.da[i], want.da[i]);
+        assert!(close(got.db[i], want.db[i]), "db[{i}] {} vs {}", got.db[i], want.db[i]);
+        for j in 0..N {
+            assert!(
+                close(got.dadb[(i, j)], want.dadb[(i, j)]),
+                "dadb[{i},{j}] {} vs {}",
+                got.dadb[(i, j)],
+                want.dadb[(i, j)]
+            );
+        }
+    }
+}
+
+const POINTS: [([f64; 3], [f64; 3]); 3] =
+    [([0.3, 0.7, -0.4], [0.5, 1.1, 0.2]), ([-0.6, 0.2, 0.9], [1.3, -0.5, 0.6]), ([1.1, -0.8, 0.35], [-0.7, 0.9, -0.3])];
+
+#[test]
+fn mixed_and_first_agree_with_num_dual() {
+    for (a, b) in POINTS {
+        let want = reference(&Everything, &a, &b);
+        assert_same(&mixed(&Everything, &a, &b), &want);
+        let g = first(&Everything, &a, &b);
+        assert_same(&MixedDerivatives { value: g.value, da: g.da, db: g.db, dadb: want.dadb }, &want);
+    }
+}
+
+/// A chain of couplings between many arguments, so that every entry of the mixed block is nonzero.
+struct Coupled;
+
+impl<const N: usize> PairFunction<N> for Coupled {
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+        let mut sa = D::from(0.0);
+        let mut sb = D::from(0.0);
+        let mut acc = D::from(0.0);
+        for i in 0..N {
+            sa += a[i] * (i as f64 + 1.0);
+            sb += b[i] * (0.5 + i as f64 * 0.1);
+            acc += (a[i] - b[(i + 1) % N]).sin() * b[i];
+        }
+        acc + (sa * 0.1).sin() * (sb * 0.2).cos() + sa * sb * sb * 0.01
+    }
+}
+
+#[test]
+fn chunked_equals_single_pass() {
+    const N: usize = 15;
+    let a: [f64; N] = std::array::from_fn(|i| 0.1 * i as f64 - 0.4);
+    let b: [f64; N] = std::array::from_fn(|i| 0.3 - 0.05 * i as f64);
+    const { assert!(N > CROSSOVER && !N.is_multiple_of(CHUNK), "covers a partial last chunk") };
+    let single = mixed_single_pass(&Coupled, &a, &b);
+    let chunked = mixed_chunked(&Coupled, &a, &b);
+    assert_same(&chunked, &single);
+    assert_same(&single, &reference(&Coupled, &a, &b));
+    assert!(single.dadb.iter().all(|x| *x != 0.0));
+}
+
+#[test]
+fn comparisons_and_conversions_use_the_value() {
+    let (a, _) = Mixed::<2, 2>::seed(&[1.5, -2.0], &[0.0, 0.0], 0);
+    assert!(a[0] > a[1] && a[0] > 1.0 && a[1] < -1.0);
+    assert_eq!(num_traits::Signed::abs(&a[1]).a, [0.0, -1.0]);
+    assert_eq!((a[0] % 1.0).re, 0.5);
+    let total: Mixed<2, 2> = a.iter().copied().sum();
+    assert_eq!((total.re, total.a), (-0.5, [1.0, 1.0]));
+}
