@@ -6,12 +6,14 @@ mod charged_particle;
 mod double_spherical_pendulum;
 mod heavy_top;
 mod kepler;
+mod pendulum_chain;
 mod two_body;
 
 pub use charged_particle::{ChargedParticle, TABLE_1};
 pub use double_spherical_pendulum::DoubleSphericalPendulum;
 pub use heavy_top::HeavyTop;
 pub use kepler::Kepler;
+pub use pendulum_chain::{PendulumChain, CHAIN_LINKS};
 pub use two_body::TwoBody;
 
 use crate::{DynSystem, Erased, Error};
@@ -106,6 +108,12 @@ pub const BUILT_IN: &[BuiltIn] = &[
         description: "heavy symmetric top in Euler angles (φ, θ, ψ), G = T² (φ, ψ)",
         defaults: || HeavyTop::default().parameters(),
         build: |o| build(HeavyTop::default(), o),
+    },
+    BuiltIn {
+        name: "pendulum_chain",
+        description: "planar chain of `links` pendula under gravity, angles θ_i from the vertical; no symmetry",
+        defaults: pendulum_chain::defaults,
+        build: pendulum_chain::build,
     },
 ];
 
