@@ -163,6 +163,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
         let mut max_drift = 0.0f64;
+        let mut kept = newton::KeptJacobian::new();
 
         for k in 0..=steps {
             let t = k as f64 * h;
@@ -188,7 +189,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             let base = scheme.base(config.base());
             let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let mut last = None;
-            let stats = newton::solve_with(&mut z, scale, &method.newton, |z, with_jacobian| {
+            let stats = newton::solve_with(&mut z, scale, &method.newton, &mut kept, |z, with_jacobian| {
                 let e = scheme.evaluate(&base, &momenta, z, with_jacobian);
                 last = Some(e);
                 (e.residual, e.jacobian)

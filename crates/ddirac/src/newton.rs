@@ -5,12 +5,12 @@
 //! residual norm, or a [`NewtonFailure`] saying why it stopped.
 //!
 //! [`solve_with`] runs either classical Newton (a fresh Jacobian at every iterate) or the chord
-//! variant (the default): the Jacobian is evaluated and factorized at the starting point only and
-//! reused for the later corrections of the same solve, unless a correction fails to reduce the
-//! residual by [`CONTRACTION`], in which case it is re-evaluated. From a good predictor the starting
-//! point is within a small δ of the root, so the kept Jacobian differs from the exact one by O(δ) and
-//! the iterates converge as fast as classical Newton's in practice; both stop on the same test. A
-//! residual without its Jacobian costs a fraction of one with it (see `ad`).
+//! variant (the default): a factorized Jacobian is reused for later corrections, and by the next
+//! solve ([`KeptJacobian`]), as long as each correction reduces the residual by [`CONTRACTION`];
+//! otherwise it is re-evaluated where the correction started. Chord iterates converge linearly, so
+//! after the first iterate that passes the test one more correction brings it to round-off, as a
+//! classical step would; both stop on the same test. A residual without its Jacobian costs a
+//! fraction of one with it (see `ad`), the more so the more coordinates.
 
 use nalgebra::{SMatrix, SVector};
 
@@ -39,6 +39,9 @@ impl Default for NewtonOptions {
         Self { tolerance: 1e-12, max_iterations: 50, reuse_jacobian: true }
     }
 }
+
+/// Keep Jacobians across solves when one costs at least this many residuals.
+pub const ACROSS_SOLVES: usize = 7;
 
 /// A reused Jacobian is replaced when a correction reduces ‖r‖∞ by less than this factor.
 pub const CONTRACTION: f64 = 0.25;
@@ -123,10 +126,44 @@ pub fn solve<const N: usize>(
     mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
 ) -> Result<NewtonStats, NewtonFailure> {
     let options = NewtonOptions { reuse_jacobian: false, ..*options };
-    solve_with(z, residual_scale, &options, |z, _| {
+    solve_with(z, residual_scale, &options, &mut KeptJacobian::new(), |z, _| {
         let (r, j) = eval(z);
         (r, Some(j))
     })
+}
+
+/// The factorized Jacobian a chord solve leaves for the next one, with how well it served.
+#[derive(Debug, Clone, Default)]
+pub struct KeptJacobian<const N: usize> {
+    lu: Option<Factorization<N>>,
+    corrections: usize,
+}
+
+impl<const N: usize> KeptJacobian<N> {
+    /// Nothing kept yet.
+    pub fn new() -> Self {
+        Self { lu: None, corrections: 0 }
+    }
+
+    /// The cost of a Jacobian in residuals, estimated by the flop counts of a product of the dual
+    /// numbers that compute them: (3n² + 4n + 1) / (4n + 1) (see `ad`).
+    pub fn relative_cost() -> usize {
+        (3 * N * N + 4 * N + 1) / (4 * N + 1)
+    }
+
+    /// Whether a Jacobian is kept from one solve to the next at all: when it costs at least
+    /// [`ACROSS_SOLVES`] residuals (n ≥ 9). Below, a fresh Jacobian at the start of each solve costs
+    /// about as much as the extra chord corrections it saves, and gives iterates closer to
+    /// classical Newton's.
+    pub fn across_solves() -> bool {
+        Self::relative_cost() >= ACROSS_SOLVES
+    }
+
+    /// A kept Jacobian starts the next solve while the previous one needed at most this many
+    /// corrections: two plus [`Self::relative_cost`].
+    pub fn budget() -> usize {
+        2 + Self::relative_cost()
+    }
 }
 
 /// Solves `r(z) = 0` starting from `z`, which holds the root on success, by classical or chord
@@ -134,29 +171,56 @@ pub fn solve<const N: usize>(
 ///
 /// `eval(z, with_jacobian)` returns the residual, and the Jacobian when `with_jacobian` is true.
 /// The last call is always at the returned root. `residual_scale` sets the units of the residual
-/// test (see [`NewtonOptions::tolerance`]).
+/// test (see [`NewtonOptions::tolerance`]). With chord Newton and many unknowns
+/// ([`KeptJacobian::across_solves`]), `kept` carries the factorized Jacobian from one solve to the
+/// next (the steps of a run): a solve starts from it while the previous solve needed at most
+/// [`KeptJacobian::budget`] corrections, and from a fresh one otherwise.
 ///
 /// ```
 /// use nalgebra::{SMatrix, SVector};
+/// use ddirac::newton::{solve_with, KeptJacobian};
 /// // z³ = 2 from z = 1.2: one Jacobian serves every correction.
-/// let mut z = SVector::<f64, 1>::new(1.2);
-/// let stats = ddirac::newton::solve_with(&mut z, 1.0, &Default::default(), |z, with_jacobian| {
+/// let (mut z, mut kept) = (SVector::<f64, 1>::new(1.2), KeptJacobian::new());
+/// let stats = solve_with(&mut z, 1.0, &Default::default(), &mut kept, |z, with_jacobian| {
 ///     let r = SVector::<f64, 1>::new(z[0].powi(3) - 2.0);
 ///     (r, with_jacobian.then(|| SMatrix::<f64, 1, 1>::new(3.0 * z[0] * z[0])))
 /// })
 /// .unwrap();
 /// assert!((z[0] - 2f64.cbrt()).abs() < 1e-14);
 /// assert_eq!(stats.jacobians, 1);
+/// assert!(stats.iterations > 2);
 /// ```
 pub fn solve_with<const N: usize>(
     z: &mut SVector<f64, N>,
     residual_scale: f64,
     options: &NewtonOptions,
+    kept: &mut KeptJacobian<N>,
+    eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
+) -> Result<NewtonStats, NewtonFailure> {
+    let reuse = options.reuse_jacobian
+        && KeptJacobian::<N>::across_solves()
+        && kept.lu.is_some()
+        && kept.corrections <= KeptJacobian::<N>::budget();
+    if !reuse {
+        kept.lu = None;
+    }
+    let result = chord(z, residual_scale, options, &mut kept.lu, eval);
+    match &result {
+        Ok(stats) => kept.corrections = stats.iterations,
+        Err(_) => kept.lu = None,
+    }
+    result
+}
+
+fn chord<const N: usize>(
+    z: &mut SVector<f64, N>,
+    residual_scale: f64,
+    options: &NewtonOptions,
+    kept: &mut Option<Factorization<N>>,
     mut eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
 ) -> Result<NewtonStats, NewtonFailure> {
     let threshold = options.tolerance * residual_scale.max(1.0);
     let (mut iterations, mut jacobians) = (0, 0);
-    let mut kept: Option<Factorization<N>> = None;
     let mut evaluate = |kept: &mut Option<Factorization<N>>, z: &SVector<f64, N>, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);
         let residual = r.amax();
@@ -170,11 +234,12 @@ pub fn solve_with<const N: usize>(
         }
         Ok((r, residual))
     };
-    let (mut r, mut residual) = evaluate(&mut kept, z, true, iterations)?;
-    let (mut fresh, mut small_correction) = (true, false);
+    let mut fresh = kept.is_none();
+    let (mut r, mut residual) = evaluate(kept, z, fresh, iterations)?;
+    jacobians += usize::from(fresh);
+    let mut small_correction = false;
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);
-    jacobians += 1;
     loop {
         if residual <= threshold || small_correction {
             // A reused Jacobian converges linearly, so the first iterate to pass the test is only just
@@ -193,7 +258,7 @@ pub fn solve_with<const N: usize>(
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
             }
             // The reused Jacobian does not fit here: evaluate one at this iterate and retry.
-            (r, residual) = evaluate(&mut kept, z, true, iterations)?;
+            (r, residual) = evaluate(kept, z, true, iterations)?;
             (fresh, jacobians) = (true, jacobians + 1);
             continue;
         };
@@ -203,14 +268,14 @@ pub fn solve_with<const N: usize>(
         small_correction = delta.amax() <= options.tolerance * (1.0 + z.amax());
         stale = !fresh;
         fresh = !options.reuse_jacobian;
-        let trial = evaluate(&mut kept, z, fresh, iterations);
+        let trial = evaluate(kept, z, fresh, iterations);
         jacobians += usize::from(fresh);
         let contracted = matches!(trial, Ok((_, res)) if res <= threshold || res <= CONTRACTION * previous);
         if stale && !contracted && !polished {
             // A reused Jacobian that does not contract the residual (or leads out of the domain):
             // undo the correction and evaluate the Jacobian where it started.
             *z = previous_z;
-            (r, residual) = evaluate(&mut kept, z, true, iterations)?;
+            (r, residual) = evaluate(kept, z, true, iterations)?;
             (fresh, jacobians, small_correction) = (true, jacobians + 1, false);
             continue;
         }

@@ -104,9 +104,9 @@ pub fn first<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; 
     FirstDerivatives { value: r.re, da: SVector::from(r.a), db: SVector::from(r.b) }
 }
 
-/// One pass with all n × n mixed entries.
+/// [`mixed`] in one pass with all n × n mixed entries (what [`mixed`] does up to [`CROSSOVER`]).
 #[inline(never)]
-fn mixed_single_pass<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+pub fn mixed_single_pass<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
     let (x, y) = Mixed::<N, N>::seed(a, b, 0);
     let r = f.eval(&x, &y);
     MixedDerivatives {
@@ -117,9 +117,10 @@ fn mixed_single_pass<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b:
     }
 }
 
-/// ⌈n / CHUNK⌉ passes, each with the mixed entries of CHUNK columns.
+/// [`mixed`] in ⌈n / CHUNK⌉ passes, each with the mixed entries of CHUNK columns (what [`mixed`]
+/// does above [`CROSSOVER`]).
 #[inline(never)]
-fn mixed_chunked<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+pub fn mixed_chunked<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
     let mut out = MixedDerivatives { value: 0.0, da: SVector::zeros(), db: SVector::zeros(), dadb: SMatrix::zeros() };
     for start in (0..N).step_by(CHUNK) {
         let (x, y) = Mixed::<N, CHUNK>::seed(a, b, start);
