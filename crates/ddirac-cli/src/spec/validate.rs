@@ -52,6 +52,8 @@ pub struct Spans {
     pub system: Option<Range<usize>>,
     /// The declaration of each group coordinate in `system.group`, by name (`[system]` tables only).
     pub group: Vec<(String, Range<usize>)>,
+    /// Whether the system is a built-in one (named) rather than a `[system]` table.
+    pub built_in: bool,
 }
 
 impl Spans {
@@ -106,7 +108,11 @@ impl Spans {
                 if let Some(span) = self.system.clone().filter(|_| labels.is_empty()) {
                     labels.push(LabeledSpan::new_with_span(Some("no group coordinate".into()), span));
                 }
-                Some("list the coordinates translated by the symmetry in `system.group`".into())
+                Some(if self.built_in {
+                    "this system has no symmetry to reduce by: run the unreduced equations (`reduced = false`)".into()
+                } else {
+                    "list the coordinates translated by the symmetry in `system.group`".into()
+                })
             }
             _ => None,
         };
@@ -123,7 +129,12 @@ impl Spans {
 
 /// Validates `spec` and builds the system it names or defines.
 pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>> {
-    let mut spans = Spans { time: Some(spec.time.span()), system: Some(spec.system.span()), ..Spans::default() };
+    let mut spans = Spans {
+        time: Some(spec.time.span()),
+        system: Some(spec.system.span()),
+        built_in: matches!(spec.system.get_ref(), SystemRef::BuiltIn(_)),
+        ..Spans::default()
+    };
     let (name, system, parameters) = match spec.system.get_ref() {
         SystemRef::BuiltIn(name) => {
             let built_in = built_in(source, name, spec.system.span())?;
