@@ -21,8 +21,8 @@ pub(crate) fn solve<const N: usize>(
 /// P A Q = L U with full pivoting, kept to solve several right-hand sides.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Factorization<const N: usize> {
-    /// U on and above the diagonal, the multipliers of L below it (first `rank` columns).
-    lu: SMatrix<f64, N, N>,
+    /// Row-major: U on and above the diagonal, the multipliers of L below it (first `rank` columns).
+    lu: [[f64; N]; N],
     /// Row k of the factorization is row `row_of[k]` of A.
     row_of: [usize; N],
     /// Column k of the factorization is column `col_of[k]` of A.
@@ -34,59 +34,64 @@ pub(crate) struct Factorization<const N: usize> {
 impl<const N: usize> Factorization<N> {
     /// Factorizes `a`; pivots below `rel_tol · max|a|` end the elimination (rank < N). `None` if `a`
     /// is zero or non-finite.
-    pub(crate) fn new(mut a: SMatrix<f64, N, N>, rel_tol: f64) -> Option<Self> {
+    pub(crate) fn new(a: SMatrix<f64, N, N>, rel_tol: f64) -> Option<Self> {
         let scale = a.amax();
         if !(scale.is_finite() && scale > 0.0) {
             return None;
         }
         let threshold = rel_tol * scale;
+        let mut lu: [[f64; N]; N] = std::array::from_fn(|r| std::array::from_fn(|c| a[(r, c)]));
         let mut row_of: [usize; N] = std::array::from_fn(|i| i);
         let mut col_of = row_of;
         let mut rank = 0;
         for k in 0..N {
             let (mut pr, mut pc, mut best) = (k, k, 0.0);
-            for r in k..N {
-                for c in k..N {
-                    if a[(r, c)].abs() > best {
-                        (pr, pc, best) = (r, c, a[(r, c)].abs());
+            for (r, row) in lu.iter().enumerate().skip(k) {
+                for (c, x) in row.iter().enumerate().skip(k) {
+                    if x.abs() > best {
+                        (pr, pc, best) = (r, c, x.abs());
                     }
                 }
             }
             if best <= threshold {
                 break;
             }
-            a.swap_rows(k, pr);
+            lu.swap(k, pr);
             row_of.swap(k, pr);
-            a.swap_columns(k, pc);
+            for row in lu.iter_mut() {
+                row.swap(k, pc);
+            }
             col_of.swap(k, pc);
-            for r in k + 1..N {
-                let f = a[(r, k)] / a[(k, k)];
-                a[(r, k)] = f;
+            let pivot_row = lu[k];
+            for row in lu.iter_mut().skip(k + 1) {
+                let f = row[k] / pivot_row[k];
+                row[k] = f;
                 if f != 0.0 {
                     for c in k + 1..N {
-                        a[(r, c)] -= f * a[(k, c)];
+                        row[c] -= f * pivot_row[c];
                     }
                 }
             }
             rank += 1;
         }
-        Some(Self { lu: a, row_of, col_of, rank })
+        Some(Self { lu, row_of, col_of, rank })
     }
 
     /// A solution of `a x = b` (unknowns beyond the rank set to 0).
     pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
-        let mut y: SVector<f64, N> = SVector::from_fn(|k, _| b[self.row_of[k]]);
+        let mut y: [f64; N] = std::array::from_fn(|k| b[self.row_of[k]]);
         for k in 0..self.rank {
+            let yk = y[k];
             for r in k + 1..N {
-                y[r] -= self.lu[(r, k)] * y[k];
+                y[r] -= self.lu[r][k] * yk;
             }
         }
         for k in (0..self.rank).rev() {
             let mut s = y[k];
             for c in k + 1..self.rank {
-                s -= self.lu[(k, c)] * y[c];
+                s -= self.lu[k][c] * y[c];
             }
-            y[k] = s / self.lu[(k, k)];
+            y[k] = s / self.lu[k][k];
         }
         let mut x = SVector::<f64, N>::zeros();
         for k in 0..self.rank {

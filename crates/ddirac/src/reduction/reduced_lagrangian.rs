@@ -173,12 +173,10 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        let (mut q0, mut q1) = ([D::from(0.0); N], [D::from(0.0); N]);
-        for &si in &self.split.shape {
-            (q0[si], q1[si]) = (a[si], b[si]);
-        }
+        let (mut q0, mut q1) = (*a, *b);
         for (j, &gj) in self.split.group.iter().enumerate() {
             q1[gj] = a[gj] + self.k_row(j, b, a);
+            q0[gj] = D::from(0.0);
         }
         self.ld.eval_local(base, &q0, &q1)
     }
@@ -189,12 +187,10 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        let (mut q0, mut q1) = ([D::from(0.0); N], [D::from(0.0); N]);
-        for &si in &self.split.shape {
-            (q0[si], q1[si]) = (a[si], b[si]);
-        }
+        let (mut q0, mut q1) = (*a, *b);
         for (j, &gj) in self.split.group.iter().enumerate() {
             q0[gj] = a[gj] + self.k_row(j, a, b);
+            q1[gj] = D::from(0.0);
         }
         self.ld.eval_local(base, &q0, &q1)
     }
