@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use ddirac::chart::Configuration;
 use ddirac::mechanics::legendre;
 use ddirac::newton::{self, NewtonOptions};
-use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler};
+use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler, PendulumChain};
 use ddirac::{integrate, DiscreteLagrangian, InitialMomentum, Method, OutputOptions, Problem, Rule, System, Variant};
 use nalgebra::SVector;
 
@@ -227,4 +227,19 @@ fn the_building_blocks_of_a_step_do_not_allocate() {
             assert_eq!(*count, 0, "{name} allocates");
         }
     }
+}
+
+#[test]
+fn a_long_chain_steps_do_not_allocate() {
+    // 16 coordinates: the mixed block in column chunks, the Jacobian kept across steps.
+    const N: usize = 16;
+    let chain = PendulumChain::<N>::default();
+    let q0: [f64; N] = std::array::from_fn(|i| 0.5 * ((i + 1) as f64 * std::f64::consts::PI / (N + 1) as f64).sin());
+    let p0 = [0.0; N];
+    let method = Method { rule: Rule::Midpoint, ..Method::default() };
+    run_allocations(&chain, 0.01, 10, &q0, &p0, &method);
+    let short = run_allocations(&chain, 0.01, 200, &q0, &p0, &method);
+    let long = run_allocations(&chain, 0.01, 2000, &q0, &p0, &method);
+    eprintln!("chain of {N} pendula: {short} allocations for 200 steps, {long} for 2000");
+    assert_eq!(short, long, "allocations per step: {:.2}", (long as f64 - short as f64) / 1800.0);
 }
