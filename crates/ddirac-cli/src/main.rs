@@ -7,8 +7,10 @@
 //! ddirac plot DIR [--quiet]
 //! ddirac check SPEC.toml [--set KEY=VALUE]...
 //! ddirac systems
+//! ddirac bench [--only GROUP,...] [--rounds R] [--batch-ms MS] [--quick] [--json PATH]
 //! ```
 
+mod bench;
 mod check;
 mod compare;
 mod convergence;
@@ -100,6 +102,9 @@ enum Command {
     },
     /// List the built-in systems with their coordinates and default parameters.
     Systems,
+    /// Time the engine against its alternatives side by side in one process (contenders alternating
+    /// round by round) and print the time ratios with their spread over the rounds.
+    Bench(bench::Options),
 }
 
 fn main() -> ExitCode {
@@ -129,6 +134,7 @@ fn main() -> ExitCode {
             print!("{}", systems());
             Ok(())
         }
+        Command::Bench(options) => bench::bench(&options),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
