@@ -82,16 +82,14 @@ impl<const N: usize> Factorization<N> {
         let mut y: [f64; N] = std::array::from_fn(|k| b[self.row_of[k]]);
         for k in 0..self.rank {
             let yk = y[k];
-            for r in k + 1..N {
-                y[r] -= self.lu[r][k] * yk;
+            for (yr, row) in y.iter_mut().zip(&self.lu).skip(k + 1) {
+                *yr -= row[k] * yk;
             }
         }
         for k in (0..self.rank).rev() {
-            let mut s = y[k];
-            for c in k + 1..self.rank {
-                s -= self.lu[k][c] * y[c];
-            }
-            y[k] = s / self.lu[k][k];
+            let row = &self.lu[k];
+            let s: f64 = (k + 1..self.rank).fold(y[k], |s, c| s - row[c] * y[c]);
+            y[k] = s / row[k];
         }
         let mut x = SVector::<f64, N>::zeros();
         for k in 0..self.rank {

@@ -252,7 +252,8 @@ fn chord<const N: usize>(
         if iterations >= options.max_iterations {
             return Err(NewtonFailure { reason: FailureReason::NotConverged, iterations, residual });
         }
-        let delta = kept.as_ref().filter(|lu| lu.rank == N).map(|lu| lu.solve(&r)).filter(|d| d.iter().all(|x| x.is_finite()));
+        let delta =
+            kept.as_ref().filter(|lu| lu.rank == N).map(|lu| lu.solve(&r)).filter(|d| d.iter().all(|x| x.is_finite()));
         let Some(delta) = delta else {
             if fresh {
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
