@@ -1,5 +1,5 @@
 //! Hand-written integrators of the charged particle of paper §7.1, kept as yardsticks for the
-//! generic engine ([`crate::integrate`]): benchmarks and the `work_precision` example compare its
+//! generic engine ([`crate::integrate`]): benchmarks and `ddirac bench` compare its
 //! time per step and its error against them.
 //!
 //! - [`boris`]: the Boris pusher of plasma physics, a different second-order method for the same

@@ -5,9 +5,30 @@
 //! does not depend on the choice as long as p lies on the primary constraint p = ∂L/∂v.
 
 use nalgebra::{SMatrix, SVector};
-use num_dual::{gradient, hessian, DualNum};
+use num_dual::DualNum;
 
+use crate::ad::{self, PairFunction};
+use crate::linalg::Factorization;
 use crate::System;
+
+/// L(q, v + a + b) as a function of (a, b): at a = b = 0 its a-gradient is ∂L/∂v and its mixed
+/// block is ∂²L/∂v², so the dual numbers of [`crate::ad`] give both.
+struct AtVelocity<'a, S, const N: usize> {
+    system: &'a S,
+    q: &'a [f64; N],
+    v: &'a [f64; N],
+}
+
+impl<S: System<N>, const N: usize> PairFunction<N> for AtVelocity<'_, S, N> {
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+        let q = self.q.map(D::from);
+        let mut v = *a;
+        for ((v, b), v0) in v.iter_mut().zip(b).zip(self.v) {
+            *v = *v + *b + *v0;
+        }
+        self.system.lagrangian(&q, &v)
+    }
+}
 
 /// The momentum p = ∂L/∂v(q, v).
 ///
@@ -17,14 +38,7 @@ use crate::System;
 /// assert_eq!(p, [1.0, 0.0, 1.0, 1.0]);
 /// ```
 pub fn momentum<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> [f64; N] {
-    let (_, p) = gradient(
-        |v: SVector<_, N>| {
-            let q = q.map(DualNum::from_re);
-            system.lagrangian(&q, &v.into())
-        },
-        &SVector::from(*v),
-    );
-    p.into()
+    ad::first(&AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]).da.into()
 }
 
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
@@ -44,34 +58,45 @@ fn velocity_hessian<S: System<N>, const N: usize>(
     q: &[f64; N],
     v: &[f64; N],
 ) -> (f64, SVector<f64, N>, SMatrix<f64, N, N>) {
-    hessian(
-        |v: SVector<_, N>| {
-            let q = q.map(DualNum::from_re);
-            system.lagrangian(&q, &v.into())
-        },
-        &SVector::from(*v),
-    )
+    let d = ad::mixed(&AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]);
+    (d.value, d.da, d.dadb)
 }
 
-/// A velocity v with ∂L/∂v(q, v) = p, by Newton's method on ∂L/∂v(q, v) = p; where ∂²L/∂v² is
-/// singular the undetermined velocity components stay 0. Returns the velocity and the remaining
-/// mismatch ‖∂L/∂v − p‖∞.
+/// A velocity v with ∂L/∂v(q, v) = p, by chord Newton on ∂L/∂v(q, v) = p from v = 0 (∂²L/∂v² is
+/// evaluated at the first iterate and again only where the mismatch stops decreasing; one
+/// correction is exact for a Lagrangian quadratic in v). Where ∂²L/∂v² is singular the
+/// undetermined velocity components stay 0. Returns the velocity and the remaining mismatch
+/// ‖∂L/∂v − p‖∞.
 pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N]) -> ([f64; N], f64) {
     let p = SVector::from(*p);
     let mut v = SVector::<f64, N>::zeros();
     let mut mismatch = f64::INFINITY;
-    for _ in 0..20 {
-        let (_, grad, hess) = velocity_hessian(system, q, &v.into());
+    let mut lu: Option<Factorization<N>> = None;
+    let mut fresh = false;
+    for _ in 0..40 {
+        let grad = if lu.is_none() {
+            let (_, grad, hess) = velocity_hessian(system, q, &v.into());
+            (lu, fresh) = (Factorization::new(hess, 1e-10), true);
+            grad
+        } else {
+            SVector::from(momentum(system, q, &v.into()))
+        };
         let r = grad - p;
         let new_mismatch = r.amax();
         if !new_mismatch.is_finite() || new_mismatch >= mismatch {
-            break;
+            if fresh {
+                break;
+            }
+            // The kept ∂²L/∂v² no longer serves: evaluate it here and go on from this iterate.
+            (lu, mismatch) = (None, f64::INFINITY);
+            continue;
         }
         mismatch = new_mismatch;
-        let Some((delta, _)) = crate::linalg::solve(hess, r, 1e-10) else { break };
+        let Some(delta) = lu.as_ref().map(|lu| lu.solve(&r)) else { break };
         v -= delta;
+        fresh = false;
         if delta.amax() <= 1e-15 * (1.0 + v.amax()) {
-            mismatch = (velocity_hessian(system, q, &v.into()).1 - p).amax();
+            mismatch = (SVector::from(momentum(system, q, &v.into())) - p).amax();
             break;
         }
     }

@@ -1,4 +1,5 @@
-//! The double spherical pendulum written as text, shared by the expression tests and benchmark.
+//! The double spherical pendulum written as text, shared by the expression tests, the expression
+//! benchmark and the `expression` group of `ddirac bench`.
 
 use ddirac::expression::ExpressionSpec;
 use ddirac::Coordinate;
