@@ -117,8 +117,11 @@ fn quick_run_measures_every_group_and_writes_the_json_file() {
     assert!(json_ratios >= 10);
 
     // Reduced and unreduced equations are different schemes with the same trajectory.
+    // (+) and (−), each at the default Newton tolerance and at 1e-13.
     let agreement = document["groups"]["reduction"]["agreement"].as_array().unwrap();
-    assert_eq!(agreement.len(), 2);
+    assert_eq!(agreement.len(), 4);
+    let tolerances: Vec<f64> = agreement.iter().map(|a| a["tolerance"].as_f64().unwrap()).collect();
+    assert_eq!(tolerances, [1e-12, 1e-12, 1e-13, 1e-13]);
     for a in agreement {
         let difference = a["max_abs_difference"].as_f64().unwrap();
         assert!(difference.is_finite() && difference <= 1e-8, "{a}");
