@@ -417,7 +417,7 @@ where
         total += (wm1[si] - kt_mu) * (q1[si] - plus[si]);
     }
     for (j, &gj) in reduction.split.group.iter().enumerate() {
-        let h = reduction.k_row(j, plus, &x0);
+        let h = reduction.k_row(j, plus, &x0).unwrap_or(D::from(0.0));
         total += wm1[gj] * (q1[gj] - q0[gj] - plus[gj] - h);
     }
     total
@@ -445,7 +445,7 @@ where
         pairings += (wm0[si] - kt_mu) * (q0[si] - minus[si]);
     }
     for (j, &gj) in reduction.split.group.iter().enumerate() {
-        let h = reduction.k_row(j, minus, &x1);
+        let h = reduction.k_row(j, minus, &x1).unwrap_or(D::from(0.0));
         pairings += wm0[gj] * (q0[gj] - q1[gj] - minus[gj] - h);
     }
     l + pairings * signs.factor()

@@ -64,8 +64,8 @@ impl<S> LagrangePoincareDirac<'_, S> {
             shifted[gj] = a[gj] + b[gj];
         }
         match self.variant {
-            Variant::Plus => self.reduction.l_plus_local(base, &shifted, b),
-            Variant::Minus => self.reduction.l_minus_local(base, &shifted, b),
+            Variant::Plus => self.reduction.l_plus_in_place(base, shifted, *b),
+            Variant::Minus => self.reduction.l_minus_in_place(base, shifted, *b),
         }
     }
 

@@ -173,12 +173,20 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        let (mut q0, mut q1) = (*a, *b);
+        self.l_plus_in_place(base, *a, *b)
+    }
+
+    /// [`Self::l_plus_local`] on blocks it may overwrite (no copies of dual numbers).
+    pub(crate) fn l_plus_in_place<D, const N: usize>(&self, base: &[f64; N], mut a: [D; N], mut b: [D; N]) -> D
+    where
+        S: System<N>,
+        D: DualNum<Primitive = f64> + Copy,
+    {
         for (j, &gj) in self.split.group.iter().enumerate() {
-            q1[gj] = a[gj] + self.k_row(j, b, a);
-            q0[gj] = D::from(0.0);
+            b[gj] = self.k_row(j, &b, &a).map_or(a[gj], |k| a[gj] + k);
+            a[gj] = D::from(0.0);
         }
-        self.ld.eval_local(base, &q0, &q1)
+        self.ld.eval_local(base, &a, &b)
     }
 
     /// [`Self::l_minus`] in the chart centred at `base`.
@@ -187,26 +195,36 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        let (mut q0, mut q1) = (*a, *b);
-        for (j, &gj) in self.split.group.iter().enumerate() {
-            q0[gj] = a[gj] + self.k_row(j, a, b);
-            q1[gj] = D::from(0.0);
-        }
-        self.ld.eval_local(base, &q0, &q1)
+        self.l_minus_in_place(base, *a, *b)
     }
 
-    /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks.
+    /// [`Self::l_minus_local`] on blocks it may overwrite (no copies of dual numbers).
+    pub(crate) fn l_minus_in_place<D, const N: usize>(&self, base: &[f64; N], mut a: [D; N], mut b: [D; N]) -> D
+    where
+        S: System<N>,
+        D: DualNum<Primitive = f64> + Copy,
+    {
+        for (j, &gj) in self.split.group.iter().enumerate() {
+            a[gj] = self.k_row(j, &a, &b).map_or(a[gj], |k| a[gj] + k);
+            b[gj] = D::from(0.0);
+        }
+        self.ld.eval_local(base, &a, &b)
+    }
+
+    /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks; `None` when row j of K
+    /// is zero.
     pub(crate) fn k_row<D: DualNum<Primitive = f64> + Copy, const N: usize>(
         &self,
         j: usize,
         u: &[D; N],
         v: &[D; N],
-    ) -> D {
-        let mut acc = D::from(0.0);
+    ) -> Option<D> {
+        let mut acc: Option<D> = None;
         for (i, &si) in self.split.shape.iter().enumerate() {
             let kji = self.connection.entry(j, i);
             if kji != 0.0 {
-                acc += (u[si] - v[si]) * kji;
+                let term = (u[si] - v[si]) * kji;
+                acc = Some(acc.map_or(term, |s| s + term));
             }
         }
         acc
