@@ -158,7 +158,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let mut config = Configuration::new(self.setup.q0, kinds);
         let mut momenta = scheme.momenta_from_p(&self.setup.p0);
         let j0 = split.g(&self.setup.p0);
-        let mut z_prev: Option<SVector<f64, N>> = None;
+        let (mut z_prev, mut z_prev2): (Option<SVector<f64, N>>, Option<SVector<f64, N>>) = (None, None);
         let mut z = scheme.unknowns(&self.setup.dq0);
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
@@ -223,10 +223,13 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
 
             config.advance(&dq);
             momenta = last.momenta_next;
-            let predicted = match z_prev {
-                Some(prev) => 2.0 * z - prev,
-                None => z,
+            // Quadratic extrapolation of the unknowns from the last three steps (linear after two).
+            let predicted = match (z_prev, z_prev2) {
+                (Some(p1), Some(p2)) => 3.0 * (z - p1) + p2,
+                (Some(p1), None) => 2.0 * z - p1,
+                _ => z,
             };
+            z_prev2 = z_prev;
             z_prev = Some(z);
             z = predicted;
         }

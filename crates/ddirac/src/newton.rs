@@ -242,9 +242,12 @@ fn chord<const N: usize>(
     let (mut stale, mut polished) = (false, false);
     loop {
         if residual <= threshold || small_correction {
-            // A reused Jacobian converges linearly, so the first iterate to pass the test is only just
-            // within it; one more correction brings it to round-off like a classical Newton step.
-            if !stale || polished || iterations >= options.max_iterations {
+            // The first iterate to pass the test may be only just within it: after a reused Jacobian
+            // (linear convergence), or after a fresh one from a good predictor when the correction
+            // was not yet tiny. One more correction brings it to round-off, as the overshoot of a
+            // second classical Newton step would.
+            let settled = iterations == 0 || (!stale && small_correction);
+            if settled || polished || iterations >= options.max_iterations {
                 return Ok(NewtonStats { iterations, residual, jacobians });
             }
             polished = true;
