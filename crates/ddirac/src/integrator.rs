@@ -2,9 +2,9 @@
 //! Newton solve, the reconstruction in re-centred charts, the diagnostics and failure reporting.
 //!
 //! Each step k solves the chosen scheme's equations for chart-local unknowns z (increments, and γ_k
-//! for the reduced schemes) by Newton's method from a predictor (the previous step's unknowns,
-//! extrapolated quadratically from the last three, linearly after two; on the first step h · v0 from the Legendre transform), then advances the
-//! configuration and the momenta.
+//! for the reduced schemes) by Newton's method from a predictor (the previous steps' unknowns,
+//! extrapolated quadratically from the last three, linearly after two; on the first step h · v0
+//! from the Legendre transform), then advances the configuration and the momenta.
 
 use std::time::Instant;
 
