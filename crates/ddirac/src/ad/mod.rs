@@ -104,6 +104,22 @@ pub fn first<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; 
     FirstDerivatives { value: r.re, da: SVector::from(r.a), db: SVector::from(r.b) }
 }
 
+/// [`first`], or with `with_mixed` one pass of [`mixed`] and its mixed block: what a Newton
+/// iterate needs with or without a fresh Jacobian.
+pub fn first_or_mixed<F: PairFunction<N>, const N: usize>(
+    f: &F,
+    a: &[f64; N],
+    b: &[f64; N],
+    with_mixed: bool,
+) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
+    if with_mixed {
+        let d = mixed(f, a, b);
+        (FirstDerivatives { value: d.value, da: d.da, db: d.db }, Some(d.dadb))
+    } else {
+        (first(f, a, b), None)
+    }
+}
+
 /// [`mixed`] in one pass with all n × n mixed entries (what [`mixed`] does up to [`CROSSOVER`]).
 #[inline(never)]
 pub fn mixed_single_pass<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {

@@ -29,15 +29,8 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
     }
 
     fn evaluate(&self, base: &[f64; N], p: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
-        let zero = SVector::zeros();
-        let (value, d1, d2, jacobian) = if with_jacobian {
-            let d = self.ld.derivatives_local(base, &zero, z);
-            (d.value, d.d1, d.d2, Some(d.d1d2))
-        } else {
-            let d = self.ld.first_derivatives_local(base, &zero, z);
-            (d.value, d.da, d.db, None)
-        };
-        Evaluation { residual: SVector::from(*p) + d1, jacobian, discrete_energy: value, momenta_next: d2.into() }
+        let (d, jacobian) = self.ld.first_or_mixed_local(base, &SVector::zeros(), z, with_jacobian);
+        Evaluation { residual: SVector::from(*p) + d.da, jacobian, discrete_energy: d.value, momenta_next: d.db.into() }
     }
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {

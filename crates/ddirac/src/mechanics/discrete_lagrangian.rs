@@ -170,6 +170,21 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         ad::first(&Local { ld: self, base }, &(*d0).into(), &(*d1).into())
     }
 
+    /// [`Self::first_derivatives_local`], or with `with_mixed` [`Self::derivatives_local`]'s D1 D2 L_d
+    /// too (one pass).
+    pub(crate) fn first_or_mixed_local<const N: usize>(
+        &self,
+        base: &[f64; N],
+        d0: &SVector<f64, N>,
+        d1: &SVector<f64, N>,
+        with_mixed: bool,
+    ) -> (ad::FirstDerivatives<N>, Option<SMatrix<f64, N, N>>)
+    where
+        S: System<N>,
+    {
+        ad::first_or_mixed(&Local { ld: self, base }, &(*d0).into(), &(*d1).into(), with_mixed)
+    }
+
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).
     pub fn derivatives<const N: usize>(&self, q0: &[f64; N], q1: &[f64; N]) -> Derivatives<N>
     where

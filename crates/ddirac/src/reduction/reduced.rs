@@ -29,7 +29,7 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 use num_dual::DualNum;
 
 use crate::ad::{self, PairFunction};
@@ -42,14 +42,6 @@ use crate::{System, Variant};
 pub(crate) struct LagrangePoincareDirac<'a, S> {
     pub reduction: ReducedLagrangian<'a, S>,
     pub variant: Variant,
-}
-
-/// ∂l/∂(x0, γ), ∂l/∂(x1, γ) and (if computed) the mixed block, at the positions of the coordinates.
-pub(crate) struct ReducedDerivatives<const N: usize> {
-    pub value: f64,
-    pub da: SVector<f64, N>,
-    pub db: SVector<f64, N>,
-    pub dadb: Option<SMatrix<f64, N, N>>,
 }
 
 impl<S> LagrangePoincareDirac<'_, S> {
@@ -67,27 +59,6 @@ impl<S> LagrangePoincareDirac<'_, S> {
             Variant::Plus => self.reduction.l_plus_in_place(base, shifted, *b),
             Variant::Minus => self.reduction.l_minus_in_place(base, shifted, *b),
         }
-    }
-
-    pub(crate) fn derivatives<const N: usize>(&self, base: &[f64; N], z: &SVector<f64, N>) -> ReducedDerivatives<N>
-    where
-        S: System<N>,
-    {
-        let d = ad::mixed(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into());
-        ReducedDerivatives { value: d.value, da: d.da, db: d.db, dadb: Some(d.dadb) }
-    }
-
-    /// [`Self::derivatives`] without the mixed block.
-    pub(crate) fn first_derivatives<const N: usize>(
-        &self,
-        base: &[f64; N],
-        z: &SVector<f64, N>,
-    ) -> ReducedDerivatives<N>
-    where
-        S: System<N>,
-    {
-        let d = ad::first(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into());
-        ReducedDerivatives { value: d.value, da: d.da, db: d.db, dadb: None }
     }
 
     fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
@@ -121,9 +92,9 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
     }
 
     fn evaluate(&self, base: &[f64; N], wm: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
-        let d = if with_jacobian { self.derivatives(base, z) } else { self.first_derivatives(base, z) };
+        let (d, mut jacobian) =
+            ad::first_or_mixed(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into(), with_jacobian);
         let mut residual = SVector::from(*wm) + d.da;
-        let mut jacobian = d.dadb;
         let mut momenta_next = *wm;
         for &si in &self.reduction.split.shape {
             momenta_next[si] = d.db[si];
