@@ -26,6 +26,7 @@ pub struct SummaryJson<'a> {
     energy: StatsJson,
     discrete_energy: StatsJson,
     momentum_map: MomentumMapJson<'a>,
+    derivatives: String,
     newton: NewtonJson,
     wall_seconds: f64,
     total_wall_seconds: f64,
@@ -50,6 +51,7 @@ struct MethodJson {
     tolerance: f64,
     max_iterations: usize,
     check_invariance: bool,
+    derivatives: &'static str,
 }
 
 #[derive(Serialize)]
@@ -124,6 +126,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             tolerance: method.newton.tolerance,
             max_iterations: method.newton.max_iterations,
             check_invariance: method.check_invariance,
+            derivatives: method.differentiation.name(),
         },
         steps: summary.steps,
         step: summary.step,
@@ -138,6 +141,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             max_drift: summary.momentum_map.max_drift,
             max_relative_drift: summary.momentum_map.max_relative_drift,
         },
+        derivatives: summary.derivatives.to_string(),
         newton: NewtonJson {
             total_iterations: summary.newton.total_iterations,
             total_jacobians: summary.newton.total_jacobians,
@@ -189,6 +193,7 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
             summary.newton.total_jacobians,
             summary.newton.max_residual
         ),
+        format!("  derivatives      {}", summary.derivatives),
         format!("  reference error  {reference}"),
         format!("  output           {}", dir.display()),
         format!("  wall time        {:.3} s ({:.3} s integrating)", total_seconds, summary.wall_seconds),

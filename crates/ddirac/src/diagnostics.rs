@@ -93,6 +93,37 @@ pub struct NewtonSummary {
     pub max_residual: f64,
 }
 
+/// How a run evaluated the derivatives of its step equations.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum DerivativePath {
+    /// Native code compiled from the Lagrangian ([`crate::compiled`]), with the instruction counts of
+    /// its two programs (residual, and residual with the Jacobian).
+    Compiled {
+        /// Instructions of the program without the mixed block.
+        residual: usize,
+        /// Instructions of the program with the mixed block.
+        jacobian: usize,
+    },
+    /// Dual numbers ([`crate::ad`]), and why compiled derivatives were not used when they were
+    /// allowed.
+    Dual {
+        /// Why the run did not compile its derivatives; `None` when it was asked not to.
+        reason: Option<String>,
+    },
+}
+
+impl std::fmt::Display for DerivativePath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DerivativePath::Compiled { residual, jacobian } => {
+                write!(f, "compiled ({residual} instructions for a residual, {jacobian} with the Jacobian)")
+            }
+            DerivativePath::Dual { reason: None } => f.write_str("dual numbers"),
+            DerivativePath::Dual { reason: Some(reason) } => write!(f, "dual numbers (not compiled: {reason})"),
+        }
+    }
+}
+
 /// What a run reports at its end.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
@@ -114,6 +145,8 @@ pub struct Summary {
     pub momentum_map: MomentumMapDrift,
     /// Newton statistics over all steps.
     pub newton: NewtonSummary,
+    /// How the step derivatives were evaluated.
+    pub derivatives: DerivativePath,
     /// Wall-clock time of the integration loop.
     pub wall_seconds: f64,
     /// ‖q(T) − q_N‖ on the coordinates the exact solution gives, when the system has one.

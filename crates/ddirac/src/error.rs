@@ -75,6 +75,9 @@ pub enum Error {
     /// A reduced run of a system with no group coordinates.
     #[error("reduction needs at least one group coordinate; the system has none")]
     NoSymmetry,
+    /// Compiled derivatives were required (`method.derivatives = "compiled"`) but could not be built.
+    #[error("compiled derivatives are not available: {0}")]
+    NotCompiled(#[source] crate::compiled::CompileError),
     /// The consumer of the output rows failed (e.g. a full disk).
     #[error("writing output failed: {0}")]
     Output(#[source] Box<dyn std::error::Error + Send + Sync>),

@@ -17,7 +17,7 @@ use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::scheme::Scheme;
+use crate::scheme::{Scheme, StepDerivatives};
 use crate::{
     newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
 };
@@ -164,6 +164,9 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let mut newton_summary = NewtonSummary::default();
         let mut max_drift = 0.0f64;
         let mut kept = newton::KeptJacobian::new();
+        let (derivatives, derivative_path) =
+            StepDerivatives::new(scheme, method.differentiation, &scheme.base(config.base()), &z.into())
+                .map_err(Error::NotCompiled)?;
 
         for k in 0..=steps {
             let t = k as f64 * h;
@@ -190,7 +193,8 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let mut last = None;
             let stats = newton::solve_with(&mut z, scale, &method.newton, &mut kept, |z, with_jacobian| {
-                let e = scheme.evaluate(&base, &momenta, z, with_jacobian);
+                let (d, mixed) = derivatives.first_or_mixed(scheme, &base, z, with_jacobian);
+                let e = scheme.evaluate(&momenta, &d, mixed);
                 last = Some(e);
                 (e.residual, e.jacobian)
             })
@@ -258,6 +262,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 max_relative_drift: (j_scale > 0.0).then(|| max_drift / j_scale),
             },
             newton: newton_summary,
+            derivatives: derivative_path,
             wall_seconds: started.elapsed().as_secs_f64(),
             reference_error,
         })

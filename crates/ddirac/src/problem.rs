@@ -89,6 +89,44 @@ impl Variant {
     }
 }
 
+/// How a run evaluates the derivatives of its step equations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Differentiation {
+    /// Compiled derivatives when the Lagrangian can be traced and the host runs native code, dual
+    /// numbers otherwise (the summary says which, and why).
+    #[default]
+    Auto,
+    /// Compiled derivatives ([`crate::compiled`]); a run that cannot compile them fails.
+    Compiled,
+    /// Forward-mode dual numbers ([`crate::ad`]).
+    Dual,
+}
+
+impl Differentiation {
+    /// All choices, in spec order.
+    pub const ALL: [Differentiation; 3] = [Differentiation::Auto, Differentiation::Compiled, Differentiation::Dual];
+
+    /// The name in specs: `auto`, `compiled` or `dual`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Differentiation::Auto => "auto",
+            Differentiation::Compiled => "compiled",
+            Differentiation::Dual => "dual",
+        }
+    }
+
+    /// Parses a name.
+    ///
+    /// ```
+    /// use ddirac::Differentiation;
+    /// assert_eq!(Differentiation::from_name("dual"), Some(Differentiation::Dual));
+    /// assert_eq!(Differentiation::from_name("symbolic"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|d| d.name() == name)
+    }
+}
+
 /// The discretization and the choice of equations.
 ///
 /// ```
@@ -110,6 +148,8 @@ pub struct Method {
     pub newton: NewtonOptions,
     /// Check the invariance of L_d before a reduced run.
     pub check_invariance: bool,
+    /// Compiled derivatives or dual numbers.
+    pub differentiation: Differentiation,
 }
 
 impl Default for Method {
@@ -121,6 +161,7 @@ impl Default for Method {
             connection: None,
             newton: NewtonOptions::default(),
             check_invariance: true,
+            differentiation: Differentiation::Auto,
         }
     }
 }

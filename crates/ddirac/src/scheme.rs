@@ -5,6 +5,11 @@
 //! momenta advance, and how the solved unknowns move the configuration (reconstruction).
 
 use nalgebra::{SMatrix, SVector};
+use num_dual::DualNum;
+
+use crate::ad::{self, FirstDerivatives, PairFunction};
+use crate::compiled::{CompileError, CompiledPair, Traced};
+use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
 #[derive(Debug, Clone, Copy)]
@@ -27,8 +32,18 @@ pub(crate) trait Scheme<const N: usize> {
     /// The chart base for a step from a configuration whose chart base is `q`.
     fn base(&self, q: &[f64; N]) -> [f64; N];
 
-    /// Residual, by-products and, if `with_jacobian`, the Jacobian at the trial unknowns `z`.
-    fn evaluate(&self, base: &[f64; N], momenta: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N>;
+    /// The generating function f(base, a, b) of the step: its derivatives at a = 0, b = z give the
+    /// residual, the next momenta and the Jacobian ([`Scheme::evaluate`]). The base is a variable
+    /// too when the function is traced for [`crate::compiled`].
+    fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    where
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy;
+
+    /// Residual, by-products and the Jacobian, if `mixed` is given, from the generating function's
+    /// derivatives `d` and mixed block `mixed` at the trial unknowns.
+    fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<N>, mixed: Option<SMatrix<f64, N, N>>)
+        -> Evaluation<N>;
 
     /// The configuration increment q_{k+1} − q_k produced by the unknowns `z` (reconstruction).
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N];
@@ -41,4 +56,69 @@ pub(crate) trait Scheme<const N: usize> {
 
     /// Canonical momenta p from scheme momenta.
     fn p_from_momenta(&self, momenta: &[f64; N]) -> [f64; N];
+}
+
+/// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
+pub(crate) enum StepDerivatives<const N: usize> {
+    Compiled(Box<CompiledPair<N>>),
+    Dual,
+}
+
+impl<const N: usize> StepDerivatives<N> {
+    /// Compiles the derivatives of `scheme` when `choice` allows it, checking them against dual numbers
+    /// at the first step's base and predictor. Under [`Differentiation::Auto`] a failure means dual
+    /// numbers (the reason goes into the path); under [`Differentiation::Compiled`] it is an error.
+    pub fn new(
+        scheme: &impl Scheme<N>,
+        choice: Differentiation,
+        base: &[f64; N],
+        z: &[f64; N],
+    ) -> Result<(Self, DerivativePath), CompileError> {
+        if choice == Differentiation::Dual {
+            return Ok((Self::Dual, DerivativePath::Dual { reason: None }));
+        }
+        let compiled = CompiledPair::new(|base, a, b| scheme.generating::<Traced, Traced>(base, a, b), base, z)
+            .and_then(|c| {
+                let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
+                let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
+                c.check_against(base, z, (first, dual.dadb), 1e-9).map(|()| c)
+            });
+        match (compiled, choice) {
+            (Ok(c), _) => {
+                let (residual, jacobian) = c.instructions;
+                Ok((Self::Compiled(Box::new(c)), DerivativePath::Compiled { residual, jacobian }))
+            }
+            (Err(e), Differentiation::Auto) => Ok((Self::Dual, DerivativePath::Dual { reason: Some(e.to_string()) })),
+            (Err(e), _) => Err(e),
+        }
+    }
+
+    /// The generating function's value, first derivatives and, if `with_mixed`, mixed block at
+    /// (`base`, 0, `z`).
+    #[inline]
+    pub fn first_or_mixed(
+        &self,
+        scheme: &impl Scheme<N>,
+        base: &[f64; N],
+        z: &SVector<f64, N>,
+        with_mixed: bool,
+    ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
+        match self {
+            Self::Compiled(c) => c.first_or_mixed(base, &(*z).into(), with_mixed),
+            Self::Dual => ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed),
+        }
+    }
+}
+
+/// A scheme's generating function at a fixed base, as a function of the two blocks.
+struct Generating<'s, Sc, const N: usize> {
+    scheme: &'s Sc,
+    base: &'s [f64; N],
+}
+
+impl<Sc: Scheme<N>, const N: usize> PairFunction<N> for Generating<'_, Sc, N> {
+    #[inline]
+    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+        self.scheme.generating(self.base, a, b)
+    }
 }

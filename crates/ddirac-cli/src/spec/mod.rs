@@ -10,6 +10,7 @@
 //! [parameters]  m = 1.0                       # overrides of the defaults, or the constants of L
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
 //!               tolerance = 1e-12  max_iterations = 50  jacobian = "reuse"  check_invariance = true
+//!               derivatives = "auto"
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
@@ -137,6 +138,8 @@ pub struct MethodSpec {
     pub jacobian: Option<Spanned<String>>,
     /// Check the invariance of L_d before a reduced run (default true).
     pub check_invariance: Option<Spanned<bool>>,
+    /// `auto` (default: compiled when possible), `compiled` (required) or `dual` (dual numbers).
+    pub derivatives: Option<Spanned<String>>,
 }
 
 /// `[time]`: any two of step, steps, duration (all three if consistent).

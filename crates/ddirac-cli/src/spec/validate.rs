@@ -4,7 +4,9 @@
 use std::ops::Range;
 
 use ddirac::systems::BuiltIn;
-use ddirac::{Coordinate, DynSystem, Method, NewtonOptions, OutputOptions, Problem, Role, Rule, Variant};
+use ddirac::{
+    Coordinate, Differentiation, DynSystem, Method, NewtonOptions, OutputOptions, Problem, Role, Rule, Variant,
+};
 use miette::LabeledSpan;
 use toml::Spanned;
 
@@ -294,6 +296,16 @@ fn method(
         },
         None => defaults.newton.reuse_jacobian,
     };
+    let differentiation = match &m.derivatives {
+        Some(d) => Differentiation::from_name(d.get_ref()).ok_or_else(|| {
+            source
+                .error(Some(d.span()), format!("unknown derivative evaluation `{}`", d.get_ref()), "not a choice")
+                .with_help(
+                    "`method.derivatives` is `auto` (compiled when the Lagrangian allows it), `compiled` or `dual`",
+                )
+        })?,
+        None => defaults.differentiation,
+    };
     spans.reduced = m.reduced.as_ref().map(|r| r.span());
     spans.connection = m.connection.as_ref().map(|c| c.span());
     let connection = m.connection.as_ref().map(|k| connection(source, k, coordinates)).transpose()?;
@@ -304,6 +316,7 @@ fn method(
         connection,
         newton: NewtonOptions { tolerance, max_iterations, reuse_jacobian },
         check_invariance: !matches!(&m.check_invariance, Some(c) if !*c.get_ref()),
+        differentiation,
     })
 }
 

@@ -13,7 +13,10 @@
 //!
 //! The unknowns are the chart increments z = q_{k+1} − q_k.
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
+use num_dual::DualNum;
+
+use crate::ad::FirstDerivatives;
 
 use crate::scheme::{Evaluation, Scheme};
 use crate::{DiscreteLagrangian, System};
@@ -28,9 +31,21 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
         *q
     }
 
-    fn evaluate(&self, base: &[f64; N], p: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
-        let (d, jacobian) = self.ld.first_or_mixed_local(base, &SVector::zeros(), z, with_jacobian);
-        Evaluation { residual: SVector::from(*p) + d.da, jacobian, discrete_energy: d.value, momenta_next: d.db.into() }
+    fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    where
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
+    {
+        self.ld.eval_local(base, a, b)
+    }
+
+    fn evaluate(&self, p: &[f64; N], d: &FirstDerivatives<N>, mixed: Option<SMatrix<f64, N, N>>) -> Evaluation<N> {
+        Evaluation {
+            residual: SVector::from(*p) + d.da,
+            jacobian: mixed,
+            discrete_energy: d.value,
+            momenta_next: d.db.into(),
+        }
     }
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {

@@ -97,11 +97,13 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         Self { system, rule, step }
     }
 
-    /// L_d(base + δ0, base + δ1), generic over the scalar.
-    pub fn eval_local<D, const N: usize>(&self, base: &[f64; N], d0: &[D; N], d1: &[D; N]) -> D
+    /// L_d(base + δ0, base + δ1), generic over the scalar. The base is usually plain numbers; it may be
+    /// of the scalar type itself when it is a variable too (tracing, [`crate::compiled`]).
+    pub fn eval_local<D, B, const N: usize>(&self, base: &[B; N], d0: &[D; N], d1: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
     {
         let h = self.step;
         let mut v = *d1;
@@ -130,7 +132,7 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        self.eval_local(&[0.0; N], q0, q1)
+        self.eval_local(&[0.0f64; N], q0, q1)
     }
 
     /// L_d(q0, q1) in floating point.
@@ -168,21 +170,6 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         S: System<N>,
     {
         ad::first(&Local { ld: self, base }, &(*d0).into(), &(*d1).into())
-    }
-
-    /// [`Self::first_derivatives_local`], or with `with_mixed` [`Self::derivatives_local`]'s D1 D2 L_d
-    /// too (one pass).
-    pub(crate) fn first_or_mixed_local<const N: usize>(
-        &self,
-        base: &[f64; N],
-        d0: &SVector<f64, N>,
-        d1: &SVector<f64, N>,
-        with_mixed: bool,
-    ) -> (ad::FirstDerivatives<N>, Option<SMatrix<f64, N, N>>)
-    where
-        S: System<N>,
-    {
-        ad::first_or_mixed(&Local { ld: self, base }, &(*d0).into(), &(*d1).into(), with_mixed)
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).

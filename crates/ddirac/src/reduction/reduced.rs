@@ -29,10 +29,10 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 use num_dual::DualNum;
 
-use crate::ad::{self, PairFunction};
+use crate::ad::FirstDerivatives;
 
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Evaluation, Scheme};
@@ -46,10 +46,11 @@ pub(crate) struct LagrangePoincareDirac<'a, S> {
 
 impl<S> LagrangePoincareDirac<'_, S> {
     /// l̂(a, b): the reduced Lagrangian l± with x0 = x_k + a_x, x1 = x_k + b_x, γ = b_γ + a_γ.
-    pub(crate) fn lhat<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
+    pub(crate) fn lhat<D, B, const N: usize>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
     {
         let mut shifted = *a;
         for &gj in &self.reduction.split.group {
@@ -91,9 +92,20 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         base
     }
 
-    fn evaluate(&self, base: &[f64; N], wm: &[f64; N], z: &SVector<f64, N>, with_jacobian: bool) -> Evaluation<N> {
-        let (d, mut jacobian) =
-            ad::first_or_mixed(&Lhat { scheme: self, base }, &[0.0; N], &(*z).into(), with_jacobian);
+    fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    where
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
+    {
+        self.lhat(base, a, b)
+    }
+
+    fn evaluate(
+        &self,
+        wm: &[f64; N],
+        d: &FirstDerivatives<N>,
+        mut jacobian: Option<SMatrix<f64, N, N>>,
+    ) -> Evaluation<N> {
         let mut residual = SVector::from(*wm) + d.da;
         let mut momenta_next = *wm;
         for &si in &self.reduction.split.shape {
@@ -149,17 +161,5 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
             p[si] = wm[si] - self.kt_mu(i, wm);
         }
         p
-    }
-}
-
-/// l̂(a, b) at a fixed base, as a function of the two blocks.
-struct Lhat<'l, 'a, S, const N: usize> {
-    scheme: &'l LagrangePoincareDirac<'a, S>,
-    base: &'l [f64; N],
-}
-
-impl<S: System<N>, const N: usize> PairFunction<N> for Lhat<'_, '_, S, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
-        self.scheme.lhat(self.base, a, b)
     }
 }

@@ -153,7 +153,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        self.l_plus_local(&[0.0; N], a, b)
+        self.l_plus_local(&[0.0f64; N], a, b)
     }
 
     /// l₋ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·);
@@ -163,7 +163,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        self.l_minus_local(&[0.0; N], a, b)
+        self.l_minus_local(&[0.0f64; N], a, b)
     }
 
     /// [`Self::l_plus`] in the chart centred at `base` (x0 = base + a_x, x1 = base + b_x; the group
@@ -177,10 +177,11 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     }
 
     /// [`Self::l_plus_local`] on blocks it may overwrite (no copies of dual numbers).
-    pub(crate) fn l_plus_in_place<D, const N: usize>(&self, base: &[f64; N], mut a: [D; N], mut b: [D; N]) -> D
+    pub(crate) fn l_plus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
             b[gj] = self.k_row(j, &b, &a).map_or(a[gj], |k| a[gj] + k);
@@ -199,10 +200,11 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     }
 
     /// [`Self::l_minus_local`] on blocks it may overwrite (no copies of dual numbers).
-    pub(crate) fn l_minus_in_place<D, const N: usize>(&self, base: &[f64; N], mut a: [D; N], mut b: [D; N]) -> D
+    pub(crate) fn l_minus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        B: Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
             a[gj] = self.k_row(j, &a, &b).map_or(a[gj], |k| a[gj] + k);

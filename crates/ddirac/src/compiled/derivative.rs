@@ -1,0 +1,291 @@
+//! The derivatives a step needs of a pair function f(base, a, b), differentiated symbolically on its
+//! traced graph, and the two programs that compute them.
+//!
+//! With base, a and b blocks of N numbers, the schemes need at a = 0
+//!
+//! - the *first* program: f, ∂f/∂a_i, ∂f/∂b_j (1 + 2N outputs);
+//! - the *mixed* program: the same and ∂²f/∂a_i∂b_j, row-major at i·N + j (1 + 2N + N² outputs);
+//!
+//! both as functions of the inputs (base_0 … base_{N−1}, b_0 … b_{N−1}).
+//!
+//! 1. f is traced once ([`super::trace`]) with base, a and b as inputs.
+//! 2. Reverse mode over the graph gives the gradient: the adjoint ū = ∂f/∂u of each node, seeded with
+//!    f̄ = 1 and accumulated from the users of a node, x̄ += ū · ∂u/∂x, over the nodes that depend on
+//!    a or b. The adjoints are new nodes of the same graph.
+//! 3. The value and gradient are rebuilt with a := 0, which folds what a = 0 makes constant.
+//! 4. Forward mode along each b_j gives the mixed block: the tangent u̇ = Σ ∂u/∂x · ẋ, seeded with
+//!    ḃ_j = 1, of the nodes ∂f/∂a_i read; nodes that do not depend on b_j have no tangent, so zeros
+//!    cost nothing. Substituting a = 0 before differentiating along b is exact, since setting a = 0
+//!    and differentiating in b commute.
+//!
+//! The local derivatives ∂u/∂x are the textbook ones, written with the node u = op(x) where that
+//! saves work (∂eˣ = u, ∂tan = 1 + u², ∂(x/y)/∂y = −u/y); atan2(x, y) = atan(x/y) has
+//! ∂/∂x = y/(x² + y²), ∂/∂y = −x/(x² + y²); xʸ with a variable exponent has ∂/∂x = y·u/x and
+//! ∂/∂y = u·ln x; |x| has sign(x), and sign(x) has 0.
+
+use super::graph::{Graph, Node};
+use super::program::{Binary, Instruction, Program, Unary};
+use super::trace::{self, NotCompiled, Traced};
+
+/// The two programs of a pair function: inputs (base, b), outputs at a = 0 as in the module
+/// documentation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairPrograms {
+    /// f, ∂f/∂a, ∂f/∂b.
+    pub first: Program,
+    /// f, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b (row-major).
+    pub mixed: Program,
+}
+
+/// Traces f(base, a, b) at (base, 0, b) and returns its programs.
+///
+/// The point only matters for what the trace can check there: values that code inspects, and that
+/// f and its derivatives are finite.
+///
+/// ```
+/// use ddirac::compiled::pair_programs;
+/// use num_dual::DualNum;
+/// // f = (base + a)² · eᵇ
+/// let programs = pair_programs(|base, a, b| (base[0] + a[0]).powi(2) * b[0].exp(), &[1.0], &[0.0]).unwrap();
+/// let mut out = [0.0; 4];
+/// programs.mixed.eval(&[3.0, 0.0], &mut Vec::new(), &mut out);
+/// assert_eq!(out, [9.0, 6.0, 9.0, 6.0]); // f, ∂f/∂a, ∂f/∂b, ∂²f/∂a∂b
+/// ```
+pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<PairPrograms, NotCompiled>
+where
+    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+{
+    let point: Vec<f64> = base.iter().chain(&[0.0; N]).chain(b).copied().collect();
+    let (mut graph, y) = trace::trace(&point, |x| {
+        let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
+        f(&block(0), &block(1), &block(2))
+    })?;
+    // The trace's inputs are its first nodes: base, a, b.
+    let wrt: Vec<Node> = (N..3 * N).map(|k| k as Node).collect();
+    let mut roots = vec![y];
+    roots.extend(gradient(&mut graph, y, &wrt));
+    let a_is_zero: Vec<Option<f64>> = (0..3 * N).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
+    let (mut graph, roots) = graph.substitute(&roots, &a_is_zero);
+
+    let da = &roots[1..=N];
+    let columns: Vec<Vec<Node>> = (0..N)
+        .map(|j| match graph.input_node(N + j) {
+            Some(b_j) => directional(&mut graph, b_j, da),
+            None => vec![graph.constant(0.0); N],
+        })
+        .collect();
+    let mut outputs = roots.clone();
+    outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
+    for (k, &n) in outputs.iter().enumerate() {
+        let value = graph.value(n);
+        if !value.is_finite() {
+            let what = ["value", "first derivative", "mixed derivative"][usize::from(k > 0) + usize::from(k > 2 * N)];
+            return Err(NotCompiled::NonFinite { what, value });
+        }
+    }
+    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs) })
+}
+
+/// A local derivative ∂u/∂x: a factor, or the reciprocal of a divisor (so that ū · 1/d is one
+/// division).
+#[derive(Debug, Clone, Copy)]
+enum Partial {
+    Times(Node),
+    Over(Node),
+}
+
+impl Partial {
+    /// v · ∂u/∂x.
+    fn scale(self, g: &mut Graph, v: Node) -> Node {
+        match self {
+            Partial::Times(d) => g.mul(v, d),
+            Partial::Over(d) => g.div(v, d),
+        }
+    }
+}
+
+/// ∂f/∂w for each w in `wrt`, by reverse mode over the nodes up to f.
+fn gradient(g: &mut Graph, f: Node, wrt: &[Node]) -> Vec<Node> {
+    let end = f as usize + 1;
+    let mut active = vec![false; end];
+    for &w in wrt.iter().filter(|&&w| (w as usize) < end) {
+        active[w as usize] = true;
+    }
+    for n in 0..end {
+        active[n] = active[n] || g.instruction(n as Node).operands().any(|x| active[x as usize]);
+    }
+    let mut adjoint: Vec<Option<Node>> = vec![None; end];
+    if active[f as usize] {
+        adjoint[f as usize] = Some(g.constant(1.0));
+    }
+    for u in (0..end).rev() {
+        let Some(bar) = adjoint[u] else { continue };
+        for (x, partial) in partials(g, u as Node, |x| active[x as usize]).into_iter().flatten() {
+            let term = partial.scale(g, bar);
+            adjoint[x as usize] = Some(match adjoint[x as usize] {
+                Some(sum) => g.add(sum, term),
+                None => term,
+            });
+        }
+    }
+    wrt.iter().map(|&w| adjoint.get(w as usize).copied().flatten().unwrap_or_else(|| g.constant(0.0))).collect()
+}
+
+/// The derivatives of `roots` along the input node `x`, by forward mode over the nodes they read.
+fn directional(g: &mut Graph, x: Node, roots: &[Node]) -> Vec<Node> {
+    let end = roots.iter().map(|&r| r as usize + 1).max().unwrap_or(0);
+    let needed = g.live(roots);
+    let mut tangent: Vec<Option<Node>> = vec![None; end.max(x as usize + 1)];
+    tangent[x as usize] = Some(g.constant(1.0));
+    for u in x as usize + 1..end {
+        if !needed[u] {
+            continue;
+        }
+        let mut sum = None;
+        for (v, partial) in partials(g, u as Node, |v| tangent[v as usize].is_some()).into_iter().flatten() {
+            if let Some(dv) = tangent[v as usize] {
+                let term = partial.scale(g, dv);
+                sum = Some(sum.map_or(term, |s| g.add(s, term)));
+            }
+        }
+        tangent[u] = sum;
+    }
+    roots.iter().map(|&r| tangent[r as usize].unwrap_or_else(|| g.constant(0.0))).collect()
+}
+
+/// ∂u/∂x for the operands x of node u that `active` selects.
+fn partials(g: &mut Graph, u: Node, active: impl Fn(Node) -> bool) -> [Option<(Node, Partial)>; 2] {
+    match g.instruction(u) {
+        Instruction::Input(_) | Instruction::Const(_) => [None, None],
+        Instruction::Unary(op, x) => [active(x).then(|| (x, unary(g, op, x, u))), None],
+        Instruction::Powi(x, n) => [active(x).then(|| (x, power(g, x, n, u))), None],
+        Instruction::Binary(op, x, y) => [
+            active(x).then(|| (x, first_operand(g, op, x, y, u))),
+            active(y).then(|| (y, second_operand(g, op, x, y, u))),
+        ],
+    }
+}
+
+/// d(xⁿ)/dx = n xⁿ⁻¹ (n u / x for the one n whose n − 1 is not an i32).
+fn power(g: &mut Graph, x: Node, n: i32, u: Node) -> Partial {
+    let factor = g.constant(f64::from(n));
+    match n.checked_sub(1) {
+        Some(m) => {
+            let p = g.powi(x, m);
+            Partial::Times(g.mul(factor, p))
+        }
+        None => {
+            let nu = g.mul(factor, u);
+            Partial::Times(g.div(nu, x))
+        }
+    }
+}
+
+/// f′(x) for u = f(x).
+fn unary(g: &mut Graph, op: Unary, x: Node, u: Node) -> Partial {
+    let one = g.constant(1.0);
+    let square = |g: &mut Graph, v: Node| g.mul(v, v);
+    match op {
+        Unary::Neg => Partial::Times(g.constant(-1.0)),
+        Unary::Recip => {
+            let uu = square(g, u);
+            Partial::Times(g.neg(uu))
+        }
+        Unary::Sqrt => Partial::Over(g.add(u, u)),
+        Unary::Cbrt => {
+            let three = g.constant(3.0);
+            let three_x = g.mul(three, x);
+            Partial::Times(g.div(u, three_x))
+        }
+        Unary::Abs => Partial::Times(g.unary(Unary::Signum, x)),
+        Unary::Signum => Partial::Times(g.constant(0.0)),
+        Unary::Exp => Partial::Times(u),
+        Unary::ExpM1 => Partial::Times(g.add(u, one)),
+        Unary::Ln => Partial::Over(x),
+        Unary::Ln1p => Partial::Over(g.add(x, one)),
+        Unary::Sin => Partial::Times(g.unary(Unary::Cos, x)),
+        Unary::Cos => {
+            let s = g.unary(Unary::Sin, x);
+            Partial::Times(g.neg(s))
+        }
+        Unary::Tan => {
+            let uu = square(g, u);
+            Partial::Times(g.add(one, uu))
+        }
+        Unary::Tanh => {
+            let uu = square(g, u);
+            Partial::Times(g.sub(one, uu))
+        }
+        Unary::Sinh => Partial::Times(g.unary(Unary::Cosh, x)),
+        Unary::Cosh => Partial::Times(g.unary(Unary::Sinh, x)),
+        Unary::Asin | Unary::Acos | Unary::Atan | Unary::Asinh | Unary::Acosh | Unary::Atanh => {
+            let xx = square(g, x);
+            let denominator = match op {
+                Unary::Asin | Unary::Acos => {
+                    let d = g.sub(one, xx);
+                    g.unary(Unary::Sqrt, d)
+                }
+                Unary::Asinh => {
+                    let d = g.add(xx, one);
+                    g.unary(Unary::Sqrt, d)
+                }
+                Unary::Acosh => {
+                    let d = g.sub(xx, one);
+                    g.unary(Unary::Sqrt, d)
+                }
+                Unary::Atan => g.add(one, xx),
+                _ => g.sub(one, xx),
+            };
+            Partial::Over(if op == Unary::Acos { g.neg(denominator) } else { denominator })
+        }
+    }
+}
+
+/// ∂u/∂x for u = op(x, y).
+fn first_operand(g: &mut Graph, op: Binary, x: Node, y: Node, u: Node) -> Partial {
+    match op {
+        Binary::Add | Binary::Sub => Partial::Times(g.constant(1.0)),
+        Binary::Mul => Partial::Times(y),
+        Binary::Div => Partial::Over(y),
+        Binary::Pow => match g.constant_of(y) {
+            Some(p) => {
+                let (factor, exponent) = (g.constant(p), g.constant(p - 1.0));
+                let lowered = g.binary(Binary::Pow, x, exponent);
+                Partial::Times(g.mul(factor, lowered))
+            }
+            None => {
+                let yu = g.mul(y, u);
+                Partial::Times(g.div(yu, x))
+            }
+        },
+        Binary::Atan2 => {
+            let r = squared_norm(g, x, y);
+            Partial::Times(g.div(y, r))
+        }
+    }
+}
+
+/// ∂u/∂y for u = op(x, y).
+fn second_operand(g: &mut Graph, op: Binary, x: Node, y: Node, u: Node) -> Partial {
+    let negated = match op {
+        Binary::Add => return Partial::Times(g.constant(1.0)),
+        Binary::Sub => return Partial::Times(g.constant(-1.0)),
+        Binary::Mul => return Partial::Times(x),
+        Binary::Pow => {
+            let ln = g.unary(Unary::Ln, x);
+            return Partial::Times(g.mul(u, ln));
+        }
+        Binary::Div => g.div(u, y),
+        Binary::Atan2 => {
+            let r = squared_norm(g, x, y);
+            g.div(x, r)
+        }
+    };
+    Partial::Times(g.neg(negated))
+}
+
+/// x² + y².
+fn squared_norm(g: &mut Graph, x: Node, y: Node) -> Node {
+    let (xx, yy) = (g.mul(x, x), g.mul(y, y));
+    g.add(xx, yy)
+}

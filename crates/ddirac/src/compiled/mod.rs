@@ -1,0 +1,18 @@
+//! Compiled derivatives: a Lagrangian traced once into a graph of operations, differentiated
+//! symbolically, simplified, and turned into straight-line native code.
+
+mod derivative;
+mod graph;
+pub mod jit;
+mod pair;
+pub mod program;
+pub mod trace;
+
+pub use derivative::{pair_programs, PairPrograms};
+pub use jit::{JitError, NativeProgram};
+pub use pair::{CompileError, CompiledPair};
+pub use program::{Binary, Instruction, Program, Register, Unary};
+pub use trace::{NotCompiled, Traced};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,131 @@
+//! The compiled derivatives of a pair function f(base, a, b) at a = 0: what one Newton iterate of a
+//! step needs (see [`crate::ad::first_or_mixed`] for the same numbers by dual numbers).
+//!
+//! A step evaluates f = L_d(base + a, base + b) (or the reduced l̂) at a = 0 and the trial unknowns
+//! b: the value, ∂f/∂a (the residual), ∂f/∂b (the next momenta) and, for a fresh Jacobian, the
+//! mixed block ∂²f/∂a∂b. [`CompiledPair`] holds two native programs, one without and one with the
+//! mixed block, built once per run from a trace of f.
+
+use std::cell::RefCell;
+
+use nalgebra::{SMatrix, SVector};
+
+use super::{pair_programs, JitError, NativeProgram, NotCompiled, PairPrograms, Traced};
+use crate::ad::FirstDerivatives;
+
+/// Why derivatives could not be compiled.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CompileError {
+    /// The function could not be traced into a graph.
+    #[error(transparent)]
+    Trace(#[from] NotCompiled),
+    /// The graph could not be turned into native code.
+    #[error("native code: {0}")]
+    Native(String),
+    /// The compiled derivatives disagree with dual numbers at the first point.
+    #[error("compiled derivatives disagree with dual numbers at the first step ({what}: {compiled} vs {dual})")]
+    Disagrees {
+        /// Which output.
+        what: &'static str,
+        /// The compiled value.
+        compiled: f64,
+        /// The dual-number value.
+        dual: f64,
+    },
+}
+
+impl From<JitError> for CompileError {
+    fn from(e: JitError) -> Self {
+        CompileError::Native(e.to_string())
+    }
+}
+
+/// Native code for the derivatives of f(base, a, b) at a = 0, for N coordinates.
+pub struct CompiledPair<const N: usize> {
+    first: NativeProgram,
+    mixed: NativeProgram,
+    /// Instruction counts of the two programs (without, with the mixed block).
+    pub instructions: (usize, usize),
+    buffers: RefCell<Buffers>,
+}
+
+struct Buffers {
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+}
+
+impl<const N: usize> std::fmt::Debug for CompiledPair<N> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CompiledPair").field("instructions", &self.instructions).finish()
+    }
+}
+
+impl<const N: usize> CompiledPair<N> {
+    /// Traces `f` at (`base`, a = 0, `b`), differentiates it and compiles both programs.
+    pub fn new<F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<Self, CompileError>
+    where
+        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    {
+        let PairPrograms { first, mixed } = pair_programs(f, base, b)?;
+        let instructions = (first.instructions.len(), mixed.instructions.len());
+        Ok(Self {
+            first: NativeProgram::compile(&first)?,
+            mixed: NativeProgram::compile(&mixed)?,
+            instructions,
+            buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N] }),
+        })
+    }
+
+    /// Value, ∂f/∂a and ∂f/∂b at (`base`, 0, `b`), and with `with_mixed` the block ∂²f/∂a∂b.
+    pub fn first_or_mixed(
+        &self,
+        base: &[f64; N],
+        b: &[f64; N],
+        with_mixed: bool,
+    ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
+        let mut buffers = self.buffers.borrow_mut();
+        let Buffers { inputs, outputs } = &mut *buffers;
+        inputs[..N].copy_from_slice(base);
+        inputs[N..].copy_from_slice(b);
+        let program = if with_mixed { &self.mixed } else { &self.first };
+        let outputs = &mut outputs[..program.outputs()];
+        program.call(inputs, outputs);
+        let first = FirstDerivatives {
+            value: outputs[0],
+            da: SVector::from_fn(|i, _| outputs[1 + i]),
+            db: SVector::from_fn(|i, _| outputs[1 + N + i]),
+        };
+        let mixed = with_mixed.then(|| SMatrix::from_fn(|i, j| outputs[1 + 2 * N + i * N + j]));
+        (first, mixed)
+    }
+
+    /// Checks the compiled numbers against `dual` (the same derivatives by dual numbers) at one point:
+    /// every entry within `tolerance` relative to the largest entry of its block.
+    pub fn check_against(
+        &self,
+        base: &[f64; N],
+        b: &[f64; N],
+        dual: (FirstDerivatives<N>, SMatrix<f64, N, N>),
+        tolerance: f64,
+    ) -> Result<(), CompileError> {
+        let (c, cm) = self.first_or_mixed(base, b, true);
+        let cm = cm.unwrap_or_else(SMatrix::zeros);
+        let (d, dm) = dual;
+        let blocks: [(&'static str, &[f64], &[f64]); 4] = [
+            ("value", std::slice::from_ref(&c.value), std::slice::from_ref(&d.value)),
+            ("∂f/∂a", c.da.as_slice(), d.da.as_slice()),
+            ("∂f/∂b", c.db.as_slice(), d.db.as_slice()),
+            ("∂²f/∂a∂b", cm.as_slice(), dm.as_slice()),
+        ];
+        for (what, compiled, dual) in blocks {
+            let scale = dual.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            if let Some((&compiled, &dual)) =
+                compiled.iter().zip(dual).find(|(c, d)| (*c - *d).is_nan() || (*c - *d).abs() > tolerance * scale)
+            {
+                return Err(CompileError::Disagrees { what, compiled, dual });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,201 @@
+//! Straight-line programs over `f64` registers: the compiled form of a Lagrangian's derivatives.
+//!
+//! Instruction k writes register k; operands name earlier registers. A [`Program`] has no branches,
+//! so evaluating it costs exactly its instructions. [`Program::eval`] interprets it (the reference
+//! for the native code of [`super::jit`], and the path on targets without it).
+
+/// A unary operation. [`Unary::apply`] is its one definition, shared by the interpreter and by the
+/// native code, which calls it for every function that is not a single machine instruction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Unary {
+    /// −x
+    Neg,
+    /// 1/x
+    Recip,
+    /// √x
+    Sqrt,
+    /// ∛x
+    Cbrt,
+    /// |x|
+    Abs,
+    /// sign of x (±1, or 0 at zero, NaN at NaN), piecewise constant
+    Signum,
+    /// eˣ
+    Exp,
+    /// eˣ − 1
+    ExpM1,
+    /// ln x
+    Ln,
+    /// ln(1 + x)
+    Ln1p,
+    /// sin x
+    Sin,
+    /// cos x
+    Cos,
+    /// tan x
+    Tan,
+    /// asin x
+    Asin,
+    /// acos x
+    Acos,
+    /// atan x
+    Atan,
+    /// sinh x
+    Sinh,
+    /// cosh x
+    Cosh,
+    /// tanh x
+    Tanh,
+    /// asinh x
+    Asinh,
+    /// acosh x
+    Acosh,
+    /// atanh x
+    Atanh,
+}
+
+impl Unary {
+    /// The operation on one number.
+    #[inline]
+    pub fn apply(self, x: f64) -> f64 {
+        match self {
+            Unary::Neg => -x,
+            Unary::Recip => x.recip(),
+            Unary::Sqrt => x.sqrt(),
+            Unary::Cbrt => x.cbrt(),
+            Unary::Abs => x.abs(),
+            Unary::Signum => {
+                if x == 0.0 {
+                    0.0
+                } else {
+                    x.signum()
+                }
+            }
+            Unary::Exp => x.exp(),
+            Unary::ExpM1 => x.exp_m1(),
+            Unary::Ln => x.ln(),
+            Unary::Ln1p => x.ln_1p(),
+            Unary::Sin => x.sin(),
+            Unary::Cos => x.cos(),
+            Unary::Tan => x.tan(),
+            Unary::Asin => x.asin(),
+            Unary::Acos => x.acos(),
+            Unary::Atan => x.atan(),
+            Unary::Sinh => x.sinh(),
+            Unary::Cosh => x.cosh(),
+            Unary::Tanh => x.tanh(),
+            Unary::Asinh => x.asinh(),
+            Unary::Acosh => x.acosh(),
+            Unary::Atanh => x.atanh(),
+        }
+    }
+}
+
+/// A binary operation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Binary {
+    /// x + y
+    Add,
+    /// x − y
+    Sub,
+    /// x · y
+    Mul,
+    /// x / y
+    Div,
+    /// xʸ
+    Pow,
+    /// atan2(x, y), the angle of the point (y, x)
+    Atan2,
+}
+
+impl Binary {
+    /// The operation on two numbers.
+    #[inline]
+    pub fn apply(self, x: f64, y: f64) -> f64 {
+        match self {
+            Binary::Add => x + y,
+            Binary::Sub => x - y,
+            Binary::Mul => x * y,
+            Binary::Div => x / y,
+            Binary::Pow => x.powf(y),
+            Binary::Atan2 => x.atan2(y),
+        }
+    }
+}
+
+/// A register index.
+pub type Register = u32;
+
+/// One instruction; it writes the register of its own index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Instruction {
+    /// The i-th input.
+    Input(u32),
+    /// A constant, stored as its bits so that instructions can be hashed.
+    Const(u64),
+    /// f(x).
+    Unary(Unary, Register),
+    /// f(x, y).
+    Binary(Binary, Register, Register),
+    /// xⁿ for an integer n.
+    Powi(Register, i32),
+}
+
+impl Instruction {
+    /// The constant c.
+    pub fn constant(c: f64) -> Self {
+        Instruction::Const(c.to_bits())
+    }
+
+    /// The registers this instruction reads.
+    pub fn operands(self) -> impl Iterator<Item = Register> {
+        let (a, b) = match self {
+            Instruction::Input(_) | Instruction::Const(_) => (None, None),
+            Instruction::Unary(_, a) | Instruction::Powi(a, _) => (Some(a), None),
+            Instruction::Binary(_, a, b) => (Some(a), Some(b)),
+        };
+        a.into_iter().chain(b)
+    }
+
+    /// The instruction's value, given the inputs and the registers before it.
+    #[inline]
+    pub fn apply(self, inputs: &[f64], registers: &[f64]) -> f64 {
+        match self {
+            Instruction::Input(i) => inputs[i as usize],
+            Instruction::Const(bits) => f64::from_bits(bits),
+            Instruction::Unary(op, a) => op.apply(registers[a as usize]),
+            Instruction::Binary(op, a, b) => op.apply(registers[a as usize], registers[b as usize]),
+            Instruction::Powi(a, n) => registers[a as usize].powi(n),
+        }
+    }
+}
+
+/// A straight-line program: `inputs` numbers in, one register per instruction, `outputs` read from
+/// registers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Program {
+    /// How many inputs the program reads.
+    pub inputs: usize,
+    /// The instructions in evaluation order.
+    pub instructions: Vec<Instruction>,
+    /// The registers holding the outputs, in order.
+    pub outputs: Vec<Register>,
+}
+
+impl Program {
+    /// Interprets the program: reads `inputs`, writes `outputs`, uses `registers` as scratch space.
+    ///
+    /// The caller sizes the slices: `inputs.len() == self.inputs`, `outputs.len() == self.outputs.len()`.
+    pub fn eval(&self, inputs: &[f64], registers: &mut Vec<f64>, outputs: &mut [f64]) {
+        debug_assert_eq!(inputs.len(), self.inputs);
+        debug_assert_eq!(outputs.len(), self.outputs.len());
+        registers.clear();
+        for &instruction in &self.instructions {
+            let value = instruction.apply(inputs, registers);
+            registers.push(value);
+        }
+        for (out, &r) in outputs.iter_mut().zip(&self.outputs) {
+            *out = registers[r as usize];
+        }
+    }
+}
