@@ -11,7 +11,7 @@ use std::time::Instant;
 use nalgebra::SVector;
 
 use crate::chart::Configuration;
-use crate::diagnostics::{Accumulator, MomentumMapDrift, NewtonSummary, Row, Solution, Summary};
+use crate::diagnostics::{Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Solution, Summary};
 use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
@@ -163,10 +163,15 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
         let mut max_drift = 0.0f64;
-        let mut kept = newton::KeptJacobian::new();
         let (derivatives, derivative_path) =
-            StepDerivatives::new(scheme, method.differentiation, &scheme.base(config.base()), &z.into())
+            StepDerivatives::new(scheme, method.differentiation, steps, &scheme.base(config.base()), &z.into())
                 .map_err(Error::NotCompiled)?;
+        let mut kept = match derivative_path {
+            DerivativePath::Compiled { residual, jacobian } => newton::KeptJacobian::with_relative_cost(
+                newton::KeptJacobian::<N>::compiled_relative_cost(residual, jacobian),
+            ),
+            DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
+        };
 
         for k in 0..=steps {
             let t = k as f64 * h;

@@ -133,36 +133,56 @@ pub fn solve<const N: usize>(
 }
 
 /// The factorized Jacobian a chord solve leaves for the next one, with how well it served.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct KeptJacobian<const N: usize> {
     lu: Option<Factorization<N>>,
     corrections: usize,
+    relative_cost: usize,
+}
+
+impl<const N: usize> Default for KeptJacobian<N> {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl<const N: usize> KeptJacobian<N> {
-    /// Nothing kept yet.
+    /// Nothing kept yet; a Jacobian costs what [`Self::dual_relative_cost`] says.
     pub fn new() -> Self {
-        Self { lu: None, corrections: 0 }
+        Self::with_relative_cost(Self::dual_relative_cost())
     }
 
-    /// The cost of a Jacobian in residuals, estimated by the flop counts of a product of the dual
-    /// numbers that compute them: (3n² + 4n + 1) / (4n + 1) (see `ad`).
-    pub fn relative_cost() -> usize {
+    /// Nothing kept yet; a Jacobian with its factorization costs `relative_cost` residuals with their
+    /// solve.
+    pub fn with_relative_cost(relative_cost: usize) -> Self {
+        Self { lu: None, corrections: 0, relative_cost }
+    }
+
+    /// The cost of a Jacobian in residuals when both come from dual numbers, estimated by the flop
+    /// counts of a product of the dual numbers that compute them: (3n² + 4n + 1) / (4n + 1) (see `ad`).
+    pub fn dual_relative_cost() -> usize {
         (3 * N * N + 4 * N + 1) / (4 * N + 1)
     }
 
+    /// The cost of a Jacobian in residuals when both are compiled programs of `residual` and
+    /// `jacobian` instructions: the program and a factorization (about 15 n³ instructions, measured
+    /// for n = 4) against the program and a solve (about 10 n²).
+    pub fn compiled_relative_cost(residual: usize, jacobian: usize) -> usize {
+        (jacobian + 15 * N * N * N) / (residual + 10 * N * N).max(1)
+    }
+
     /// Whether a Jacobian is kept from one solve to the next at all: when it costs at least
-    /// [`ACROSS_SOLVES`] residuals (n ≥ 9). Below, a fresh Jacobian at the start of each solve costs
-    /// about as much as the extra chord corrections it saves, and gives iterates closer to
-    /// classical Newton's.
-    pub fn across_solves() -> bool {
-        Self::relative_cost() >= ACROSS_SOLVES
+    /// [`ACROSS_SOLVES`] residuals (n ≥ 9 with dual numbers). Below, a fresh Jacobian at the start of
+    /// each solve costs about as much as the extra chord corrections it saves, and gives iterates
+    /// closer to classical Newton's.
+    pub fn across_solves(&self) -> bool {
+        self.relative_cost >= ACROSS_SOLVES
     }
 
     /// A kept Jacobian starts the next solve while the previous one needed at most this many
-    /// corrections: two plus [`Self::relative_cost`].
-    pub fn budget() -> usize {
-        2 + Self::relative_cost()
+    /// corrections: two plus the relative cost.
+    pub fn budget(&self) -> usize {
+        2 + self.relative_cost
     }
 }
 
@@ -197,10 +217,8 @@ pub fn solve_with<const N: usize>(
     kept: &mut KeptJacobian<N>,
     eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
 ) -> Result<NewtonStats, NewtonFailure> {
-    let reuse = options.reuse_jacobian
-        && KeptJacobian::<N>::across_solves()
-        && kept.lu.is_some()
-        && kept.corrections <= KeptJacobian::<N>::budget();
+    let reuse =
+        options.reuse_jacobian && kept.across_solves() && kept.lu.is_some() && kept.corrections <= kept.budget();
     if !reuse {
         kept.lu = None;
     }

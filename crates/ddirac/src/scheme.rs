@@ -58,6 +58,10 @@ pub(crate) trait Scheme<const N: usize> {
     fn p_from_momenta(&self, momenta: &[f64; N]) -> [f64; N];
 }
 
+/// Under [`Differentiation::Auto`], runs of fewer steps use dual numbers: tracing and compiling take
+/// about 1 ms for four coordinates (more for many), the time of about a thousand steps.
+pub(crate) const AUTO_MIN_STEPS: usize = 1000;
+
 /// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
 pub(crate) enum StepDerivatives<const N: usize> {
     Compiled(Box<CompiledPair<N>>),
@@ -71,11 +75,16 @@ impl<const N: usize> StepDerivatives<N> {
     pub fn new(
         scheme: &impl Scheme<N>,
         choice: Differentiation,
+        steps: usize,
         base: &[f64; N],
         z: &[f64; N],
     ) -> Result<(Self, DerivativePath), CompileError> {
         if choice == Differentiation::Dual {
             return Ok((Self::Dual, DerivativePath::Dual { reason: None }));
+        }
+        if choice == Differentiation::Auto && steps < AUTO_MIN_STEPS {
+            let reason = format!("{steps} steps: compiling costs more than it saves below {AUTO_MIN_STEPS}");
+            return Ok((Self::Dual, DerivativePath::Dual { reason: Some(reason) }));
         }
         let compiled = CompiledPair::new(|base, a, b| scheme.generating::<Traced, Traced>(base, a, b), base, z)
             .and_then(|c| {

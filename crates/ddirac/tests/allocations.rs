@@ -19,7 +19,10 @@ use ddirac::chart::Configuration;
 use ddirac::mechanics::legendre;
 use ddirac::newton::{self, NewtonOptions};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler, PendulumChain};
-use ddirac::{integrate, DiscreteLagrangian, InitialMomentum, Method, OutputOptions, Problem, Rule, System, Variant};
+use ddirac::{
+    integrate, Differentiation, DiscreteLagrangian, InitialMomentum, Method, OutputOptions, Problem, Rule, System,
+    Variant,
+};
 use nalgebra::SVector;
 
 struct Counting;
@@ -124,7 +127,7 @@ fn building_blocks<S: System<N>, const N: usize>(
 }
 
 /// Asserts that runs of 200 and 2000 steps allocate equally often for the reduced (+), reduced (−)
-/// and unreduced methods.
+/// and unreduced methods, with compiled derivatives and with dual numbers.
 fn assert_no_per_step_allocation<S: System<N>, const N: usize>(
     name: &str,
     system: &S,
@@ -133,14 +136,17 @@ fn assert_no_per_step_allocation<S: System<N>, const N: usize>(
     q0: [f64; N],
     p0: [f64; N],
 ) {
-    for (reduced, variant) in [(true, Variant::Plus), (true, Variant::Minus), (false, Variant::Plus)] {
-        let method = Method { rule, variant, reduced, ..Method::default() };
+    let choices = [(true, Variant::Plus), (true, Variant::Minus), (false, Variant::Plus)]
+        .into_iter()
+        .flat_map(|c| [(c, Differentiation::Compiled), (c, Differentiation::Dual)]);
+    for ((reduced, variant), differentiation) in choices {
+        let method = Method { rule, variant, reduced, differentiation, ..Method::default() };
         // Warm-up: one-time lazy initialisations must not count as per-step costs.
         run_allocations(system, h, 10, &q0, &p0, &method);
         let short = run_allocations(system, h, 200, &q0, &p0, &method);
         let long = run_allocations(system, h, 2000, &q0, &p0, &method);
         eprintln!(
-            "{name}, reduced = {reduced}, {}: {short} allocations for 200 steps, {long} for 2000",
+            "{name}, reduced = {reduced}, {}, {differentiation:?}: {short} allocations for 200 steps, {long} for 2000",
             variant.name()
         );
         if short != long {
@@ -236,10 +242,12 @@ fn a_long_chain_steps_do_not_allocate() {
     let chain = PendulumChain::<N>::default();
     let q0: [f64; N] = std::array::from_fn(|i| 0.5 * ((i + 1) as f64 * std::f64::consts::PI / (N + 1) as f64).sin());
     let p0 = [0.0; N];
-    let method = Method { rule: Rule::Midpoint, ..Method::default() };
-    run_allocations(&chain, 0.01, 10, &q0, &p0, &method);
-    let short = run_allocations(&chain, 0.01, 200, &q0, &p0, &method);
-    let long = run_allocations(&chain, 0.01, 2000, &q0, &p0, &method);
-    eprintln!("chain of {N} pendula: {short} allocations for 200 steps, {long} for 2000");
-    assert_eq!(short, long, "allocations per step: {:.2}", (long as f64 - short as f64) / 1800.0);
+    for differentiation in [Differentiation::Compiled, Differentiation::Dual] {
+        let method = Method { rule: Rule::Midpoint, differentiation, ..Method::default() };
+        run_allocations(&chain, 0.01, 10, &q0, &p0, &method);
+        let short = run_allocations(&chain, 0.01, 200, &q0, &p0, &method);
+        let long = run_allocations(&chain, 0.01, 2000, &q0, &p0, &method);
+        eprintln!("chain of {N} pendula, {differentiation:?}: {short} allocations for 200 steps, {long} for 2000");
+        assert_eq!(short, long, "allocations per step: {:.2}", (long as f64 - short as f64) / 1800.0);
+    }
 }
