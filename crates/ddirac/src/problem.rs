@@ -92,7 +92,7 @@ impl Variant {
 /// How a run evaluates the derivatives of its step equations.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Differentiation {
-    /// Compiled derivatives when the run has at least 1000 steps, the Lagrangian can be traced and
+    /// Compiled derivatives when the run has at least 5000 steps, the Lagrangian can be traced and
     /// the host runs native code; dual numbers otherwise (the summary says which, and why).
     #[default]
     Auto,

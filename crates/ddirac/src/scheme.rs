@@ -59,8 +59,8 @@ pub(crate) trait Scheme<const N: usize> {
 }
 
 /// Under [`Differentiation::Auto`], runs of fewer steps use dual numbers: tracing and compiling take
-/// about 1 ms for four coordinates (more for many), the time of about a thousand steps.
-pub(crate) const AUTO_MIN_STEPS: usize = 1000;
+/// about 1 ms for four coordinates (more for many), what compiled steps save over about two thousand.
+pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 
 /// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
 pub(crate) enum StepDerivatives<const N: usize> {
