@@ -121,7 +121,7 @@ impl System<1> for Branching {
 
 #[test]
 fn a_lagrangian_that_branches_on_a_value_is_not_compiled() {
-    let problem = Problem::new(0.01, 1000, vec![0.5], InitialMomentum::Momentum(vec![0.0]));
+    let problem = Problem::new(0.002, 5000, vec![0.5], InitialMomentum::Momentum(vec![0.0]));
     let auto = run(&Branching, &problem, &Method::default(), Differentiation::Auto);
     let DerivativePath::Dual { reason: Some(reason) } = &auto.summary.derivatives else {
         panic!("compiled a branching Lagrangian: {}", auto.summary.derivatives)
