@@ -153,7 +153,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        self.l_plus_local(&[0.0f64; N], a, b)
+        self.l_plus_in_place(&[0.0f64; N], *a, *b)
     }
 
     /// l₋ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·);
@@ -163,20 +163,12 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         S: System<N>,
         D: DualNum<Primitive = f64> + Copy,
     {
-        self.l_minus_local(&[0.0f64; N], a, b)
+        self.l_minus_in_place(&[0.0f64; N], *a, *b)
     }
 
     /// [`Self::l_plus`] in the chart centred at `base` (x0 = base + a_x, x1 = base + b_x; the group
-    /// entries of `base` are the chart's g = 0), see [`DiscreteLagrangian::eval_local`].
-    pub(crate) fn l_plus_local<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
-    where
-        S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
-    {
-        self.l_plus_in_place(base, *a, *b)
-    }
-
-    /// [`Self::l_plus_local`] on blocks it may overwrite (no copies of dual numbers).
+    /// entries of `base` are the chart's g = 0), see [`DiscreteLagrangian::eval_local`], on blocks it may
+    /// overwrite (no copies of dual numbers).
     pub(crate) fn l_plus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
@@ -190,16 +182,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         self.ld.eval_local(base, &a, &b)
     }
 
-    /// [`Self::l_minus`] in the chart centred at `base`.
-    pub(crate) fn l_minus_local<D, const N: usize>(&self, base: &[f64; N], a: &[D; N], b: &[D; N]) -> D
-    where
-        S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
-    {
-        self.l_minus_in_place(base, *a, *b)
-    }
-
-    /// [`Self::l_minus_local`] on blocks it may overwrite (no copies of dual numbers).
+    /// [`Self::l_minus`] in the chart centred at `base`, on blocks it may overwrite.
     pub(crate) fn l_minus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
