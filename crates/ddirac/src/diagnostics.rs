@@ -103,6 +103,10 @@ pub enum DerivativePath {
         residual: usize,
         /// Instructions of the program with the mixed block.
         jacobian: usize,
+        /// Instructions of the closed-form step ([`crate::compiled::LinearStep`]), when the step
+        /// equations are linear in the unknowns (after eliminating γ): each step is then one
+        /// evaluation of it, with Newton's method only as a fallback.
+        closed_form: Option<usize>,
     },
     /// Dual numbers ([`crate::ad`]), and why compiled derivatives were not used when they were
     /// allowed.
@@ -115,8 +119,12 @@ pub enum DerivativePath {
 impl std::fmt::Display for DerivativePath {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            DerivativePath::Compiled { residual, jacobian } => {
-                write!(f, "compiled ({residual} instructions for a residual, {jacobian} with the Jacobian)")
+            DerivativePath::Compiled { residual, jacobian, closed_form } => {
+                write!(f, "compiled ({residual} instructions for a residual, {jacobian} with the Jacobian")?;
+                match closed_form {
+                    Some(n) => write!(f, "; linear step equations, solved in closed form by {n} instructions)"),
+                    None => f.write_str(")"),
+                }
             }
             DerivativePath::Dual { reason: None } => f.write_str("dual numbers"),
             DerivativePath::Dual { reason: Some(reason) } => write!(f, "dual numbers (not compiled: {reason})"),

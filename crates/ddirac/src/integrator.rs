@@ -17,7 +17,7 @@ use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::scheme::{Scheme, StepDerivatives};
+use crate::scheme::{Evaluation, Scheme, StepDerivatives};
 use crate::{
     newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
 };
@@ -162,12 +162,19 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let mut z = scheme.unknowns(&self.setup.dq0);
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
+        let equations = scheme.equations();
         let mut max_drift = 0.0f64;
-        let (derivatives, derivative_path) =
-            StepDerivatives::new(scheme, method.differentiation, steps, &scheme.base(config.base()), &z.into())
-                .map_err(Error::NotCompiled)?;
+        let (derivatives, derivative_path) = StepDerivatives::new(
+            scheme,
+            method.differentiation,
+            steps,
+            &scheme.base(config.base()),
+            &z.into(),
+            &momenta,
+        )
+        .map_err(Error::NotCompiled)?;
         let mut kept = match derivative_path {
-            DerivativePath::Compiled { residual, jacobian } => newton::KeptJacobian::with_relative_cost(
+            DerivativePath::Compiled { residual, jacobian, .. } => newton::KeptJacobian::with_relative_cost(
                 newton::KeptJacobian::<N>::compiled_relative_cost(residual, jacobian),
             ),
             DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
@@ -196,21 +203,41 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
 
             let base = scheme.base(config.base());
             let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let mut last = None;
-            let stats = newton::solve_with(&mut z, scale, &method.newton, &mut kept, |z, with_jacobian| {
-                let (d, mixed) = derivatives.first_or_mixed(scheme, &base, z, with_jacobian);
-                let e = scheme.evaluate(&momenta, &d, mixed);
-                last = Some(e);
-                (e.residual, e.jacobian)
-            })
-            .map_err(|f| Error::Newton {
-                step: k,
-                t,
-                iterations: f.iterations,
-                residual: f.residual,
-                reason: f.reason,
-            })?;
-            let last = last.expect("Newton evaluates at least once");
+            let closed_form = derivatives.linear_step().map(|l| l.solve(&base, &momenta));
+            let (stats, last) = match closed_form {
+                Some(s) if s.solves(method.newton.threshold(scale)) => {
+                    z = s.z.into();
+                    let last = Evaluation {
+                        residual: s.residual.into(),
+                        jacobian: None,
+                        discrete_energy: s.value,
+                        momenta_next: equations.advance(&momenta, &s.db),
+                    };
+                    let residual = last.residual.amax();
+                    (newton::NewtonStats { iterations: 1, residual, jacobians: 1 }, last)
+                }
+                attempt => {
+                    // Newton's method, from the closed-form solution when its residual test failed.
+                    if let Some(s) = attempt.filter(|s| s.z.iter().all(|v| v.is_finite())) {
+                        z = s.z.into();
+                    }
+                    let mut last = None;
+                    let stats = newton::solve_with(&mut z, scale, &method.newton, &mut kept, |z, with_jacobian| {
+                        let (d, mixed) = derivatives.first_or_mixed(scheme, &base, z, with_jacobian);
+                        let e = equations.evaluate(&momenta, &d, mixed);
+                        last = Some(e);
+                        (e.residual, e.jacobian)
+                    })
+                    .map_err(|f| Error::Newton {
+                        step: k,
+                        t,
+                        iterations: f.iterations,
+                        residual: f.residual,
+                        reason: f.reason,
+                    })?;
+                    (stats, last.expect("Newton evaluates at least once"))
+                }
+            };
             let dq = scheme.increment(&z);
             if dq.iter().chain(&last.momenta_next).any(|v| !v.is_finite()) || !last.discrete_energy.is_finite() {
                 return Err(Error::Diverged { step: k, t, what: "state" });

@@ -34,6 +34,13 @@ pub struct NewtonOptions {
     pub reuse_jacobian: bool,
 }
 
+impl NewtonOptions {
+    /// The residual test's threshold `tolerance · max(residual_scale, 1)`.
+    pub fn threshold(&self, residual_scale: f64) -> f64 {
+        self.tolerance * residual_scale.max(1.0)
+    }
+}
+
 impl Default for NewtonOptions {
     fn default() -> Self {
         Self { tolerance: 1e-12, max_iterations: 50, reuse_jacobian: true }
@@ -237,7 +244,7 @@ fn chord<const N: usize>(
     kept: &mut Option<Factorization<N>>,
     mut eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
 ) -> Result<NewtonStats, NewtonFailure> {
-    let threshold = options.tolerance * residual_scale.max(1.0);
+    let threshold = options.threshold(residual_scale);
     let (mut iterations, mut jacobians) = (0, 0);
     let mut evaluate = |kept: &mut Option<Factorization<N>>, z: &SVector<f64, N>, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);

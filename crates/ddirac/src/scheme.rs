@@ -8,7 +8,7 @@ use nalgebra::{SMatrix, SVector};
 use num_dual::DualNum;
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
-use crate::compiled::{CompileError, CompiledPair, Traced};
+use crate::compiled::{CompileError, CompiledPair, LinearStep, Traced};
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
@@ -22,6 +22,51 @@ pub(crate) struct Evaluation<const N: usize> {
     pub discrete_energy: f64,
     /// The scheme momenta at k + 1 if z is accepted.
     pub momenta_next: [f64; N],
+}
+
+/// The form of every scheme's step equations in the derivatives of its generating function f at
+/// (base, 0, z) and the scheme momenta m of step k:
+///
+/// ```text
+/// r_i(z) = ∂f/∂a_i + sign_i · m_i,      m'_i = ∂f/∂b_i where advances_i, m_i elsewhere,
+/// ```
+///
+/// with Jacobian ∂r/∂z = ∂²f/∂a∂b. The unknowns marked `eliminable` are the group unknowns γ of a
+/// reduced scheme: row i of r is the momentum-map equation of unknown i, which the conserved μ makes
+/// solvable for it alone ([`crate::compiled::LinearStep`] eliminates them when that equation is linear).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StepEquations<const N: usize> {
+    /// The factor of m_i in r_i: ±1.
+    pub sign: [f64; N],
+    /// Whether m_i advances to ∂f/∂b_i (otherwise it is conserved).
+    pub advances: [bool; N],
+    /// Whether unknown i is a group unknown with its own momentum-map row.
+    pub eliminable: [bool; N],
+}
+
+impl<const N: usize> StepEquations<N> {
+    /// Residual, by-products and the Jacobian, if `mixed` is given, from the generating function's
+    /// derivatives `d` and mixed block `mixed` at the trial unknowns.
+    #[inline]
+    pub fn evaluate(
+        &self,
+        momenta: &[f64; N],
+        d: &FirstDerivatives<N>,
+        mixed: Option<SMatrix<f64, N, N>>,
+    ) -> Evaluation<N> {
+        Evaluation {
+            residual: SVector::from_fn(|i, _| d.da[i] + self.sign[i] * momenta[i]),
+            jacobian: mixed,
+            discrete_energy: d.value,
+            momenta_next: self.advance(momenta, &d.db.into()),
+        }
+    }
+
+    /// The next momenta from the current ones and ∂f/∂b.
+    #[inline]
+    pub fn advance(&self, momenta: &[f64; N], db: &[f64; N]) -> [f64; N] {
+        std::array::from_fn(|i| if self.advances[i] { db[i] } else { momenta[i] })
+    }
 }
 
 /// The step equations of an integrator.
@@ -40,10 +85,8 @@ pub(crate) trait Scheme<const N: usize> {
         D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
         B: Copy;
 
-    /// Residual, by-products and the Jacobian, if `mixed` is given, from the generating function's
-    /// derivatives `d` and mixed block `mixed` at the trial unknowns.
-    fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<N>, mixed: Option<SMatrix<f64, N, N>>)
-        -> Evaluation<N>;
+    /// How the residual and the next momenta are formed from the generating function's derivatives.
+    fn equations(&self) -> StepEquations<N>;
 
     /// The configuration increment q_{k+1} − q_k produced by the unknowns `z` (reconstruction).
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N];
@@ -64,20 +107,27 @@ pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 
 /// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
 pub(crate) enum StepDerivatives<const N: usize> {
-    Compiled(Box<CompiledPair<N>>),
+    /// Compiled derivatives, and the compiled closed-form step when the step equations are linear.
+    Compiled {
+        pair: Box<CompiledPair<N>>,
+        linear: Option<Box<LinearStep<N>>>,
+    },
     Dual,
 }
 
 impl<const N: usize> StepDerivatives<N> {
     /// Compiles the derivatives of `scheme` when `choice` allows it, checking them against dual numbers
-    /// at the first step's base and predictor. Under [`Differentiation::Auto`] a failure means dual
-    /// numbers (the reason goes into the path); under [`Differentiation::Compiled`] it is an error.
+    /// at the first step's base and predictor `z` (and the closed-form step, if the equations are
+    /// linear, at its solution for the first step's momenta). Under [`Differentiation::Auto`] a
+    /// failure means dual numbers (the reason goes into the path); under [`Differentiation::Compiled`]
+    /// it is an error.
     pub fn new(
         scheme: &impl Scheme<N>,
         choice: Differentiation,
         steps: usize,
         base: &[f64; N],
         z: &[f64; N],
+        momenta: &[f64; N],
     ) -> Result<(Self, DerivativePath), CompileError> {
         if choice == Differentiation::Dual {
             return Ok((Self::Dual, DerivativePath::Dual { reason: None }));
@@ -86,19 +136,36 @@ impl<const N: usize> StepDerivatives<N> {
             let reason = format!("{steps} steps: compiling costs more than it saves below {AUTO_MIN_STEPS}");
             return Ok((Self::Dual, DerivativePath::Dual { reason: Some(reason) }));
         }
-        let compiled = CompiledPair::new(|base, a, b| scheme.generating::<Traced, Traced>(base, a, b), base, z)
-            .and_then(|c| {
-                let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
-                let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
-                c.check_against(base, z, (first, dual.dadb), 1e-9).map(|()| c)
-            });
+        let generating = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| scheme.generating(base, a, b);
+        let compiled = CompiledPair::new(generating, base, z).and_then(|pair| {
+            let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
+            let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
+            pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
+            let equations = scheme.equations();
+            let linear = LinearStep::new(generating, base, z, momenta, &equations.sign, &equations.eliminable)?;
+            if let Some(linear) = &linear {
+                check_linear(scheme, &equations, linear, base, momenta)?;
+            }
+            Ok((pair, linear))
+        });
         match (compiled, choice) {
-            (Ok(c), _) => {
-                let (residual, jacobian) = c.instructions;
-                Ok((Self::Compiled(Box::new(c)), DerivativePath::Compiled { residual, jacobian }))
+            (Ok((pair, linear)), _) => {
+                let (residual, jacobian) = pair.instructions;
+                let closed_form = linear.as_ref().map(|l| l.instructions);
+                let path = DerivativePath::Compiled { residual, jacobian, closed_form };
+                Ok((Self::Compiled { pair: Box::new(pair), linear: linear.map(Box::new) }, path))
             }
             (Err(e), Differentiation::Auto) => Ok((Self::Dual, DerivativePath::Dual { reason: Some(e.to_string()) })),
             (Err(e), _) => Err(e),
+        }
+    }
+
+    /// The compiled closed-form step, if the run has one.
+    #[inline]
+    pub fn linear_step(&self) -> Option<&LinearStep<N>> {
+        match self {
+            Self::Compiled { linear, .. } => linear.as_deref(),
+            Self::Dual => None,
         }
     }
 
@@ -113,9 +180,35 @@ impl<const N: usize> StepDerivatives<N> {
         with_mixed: bool,
     ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
         match self {
-            Self::Compiled(c) => c.first_or_mixed(base, &(*z).into(), with_mixed),
+            Self::Compiled { pair, .. } => pair.first_or_mixed(base, &(*z).into(), with_mixed),
             Self::Dual => ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed),
         }
+    }
+}
+
+/// Checks the closed-form step at (`base`, `momenta`) against dual numbers at its solution: the
+/// residual of the step equations vanishes there (relative 1e-9), and the value and ∂f/∂b agree.
+fn check_linear<const N: usize>(
+    scheme: &impl Scheme<N>,
+    equations: &StepEquations<N>,
+    linear: &LinearStep<N>,
+    base: &[f64; N],
+    momenta: &[f64; N],
+) -> Result<(), CompileError> {
+    let solution = linear.solve(base, momenta);
+    let (dual, _) = ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &solution.z, false);
+    let residual = equations.evaluate(momenta, &dual, None).residual;
+    let scale = momenta.iter().chain(dual.da.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
+    let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;
+    let db_scale = dual.db.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let checks = [
+        ("closed-form residual", residual.amax(), 0.0, scale),
+        ("value", solution.value, dual.value, dual.value.abs().max(1.0)),
+    ];
+    let db = (0..N).map(|i| ("∂f/∂b", solution.db[i], dual.db[i], db_scale));
+    match checks.into_iter().chain(db).find(|&(_, c, d, s)| !closest(c, d, s)) {
+        Some((what, compiled, dual, _)) => Err(CompileError::Disagrees { what, compiled, dual }),
+        None => Ok(()),
     }
 }
 

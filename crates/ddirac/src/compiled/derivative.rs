@@ -55,6 +55,33 @@ pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> 
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
+    let PairGraph { mut graph, value, da, db } = pair_graph(f, base, b)?;
+    let columns: Vec<Vec<Node>> = (0..N)
+        .map(|j| match graph.input_node(N + j) {
+            Some(b_j) => directional(&mut graph, b_j, &da),
+            None => vec![graph.constant(0.0); N],
+        })
+        .collect();
+    let roots: Vec<Node> = std::iter::once(value).chain(da).chain(db).collect();
+    let mut outputs = roots.clone();
+    outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
+    check_finite(&graph, &outputs, N)?;
+    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs) })
+}
+
+/// A pair function's value and gradient at a = 0, as nodes of a graph whose inputs are (base, b).
+pub(super) struct PairGraph {
+    pub graph: Graph,
+    pub value: Node,
+    pub da: Vec<Node>,
+    pub db: Vec<Node>,
+}
+
+/// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above.
+pub(super) fn pair_graph<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<PairGraph, NotCompiled>
+where
+    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+{
     let point: Vec<f64> = base.iter().chain(&[0.0; N]).chain(b).copied().collect();
     let (mut graph, y) = trace::trace(&point, |x| {
         let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
@@ -65,25 +92,21 @@ where
     let mut roots = vec![y];
     roots.extend(gradient(&mut graph, y, &wrt));
     let a_is_zero: Vec<Option<f64>> = (0..3 * N).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
-    let (mut graph, roots) = graph.substitute(&roots, &a_is_zero);
+    let (graph, roots) = graph.substitute(&roots, &a_is_zero);
+    Ok(PairGraph { graph, value: roots[0], da: roots[1..=N].to_vec(), db: roots[1 + N..].to_vec() })
+}
 
-    let da = &roots[1..=N];
-    let columns: Vec<Vec<Node>> = (0..N)
-        .map(|j| match graph.input_node(N + j) {
-            Some(b_j) => directional(&mut graph, b_j, da),
-            None => vec![graph.constant(0.0); N],
-        })
-        .collect();
-    let mut outputs = roots.clone();
-    outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
-    for (k, &n) in outputs.iter().enumerate() {
-        let value = graph.value(n);
+/// `NotCompiled::NonFinite` unless every output is finite at the graph's build point; outputs are
+/// the value, 2n first derivatives and then second derivatives.
+pub(super) fn check_finite(graph: &Graph, outputs: &[Node], n: usize) -> Result<(), NotCompiled> {
+    for (k, &node) in outputs.iter().enumerate() {
+        let value = graph.value(node);
         if !value.is_finite() {
-            let what = ["value", "first derivative", "mixed derivative"][usize::from(k > 0) + usize::from(k > 2 * N)];
+            let what = ["value", "first derivative", "mixed derivative"][usize::from(k > 0) + usize::from(k > 2 * n)];
             return Err(NotCompiled::NonFinite { what, value });
         }
     }
-    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs) })
+    Ok(())
 }
 
 /// A local derivative ∂u/∂x: a factor, or the reciprocal of a divisor (so that ū · 1/d is one
@@ -132,7 +155,7 @@ fn gradient(g: &mut Graph, f: Node, wrt: &[Node]) -> Vec<Node> {
 }
 
 /// The derivatives of `roots` along the input node `x`, by forward mode over the nodes they read.
-fn directional(g: &mut Graph, x: Node, roots: &[Node]) -> Vec<Node> {
+pub(super) fn directional(g: &mut Graph, x: Node, roots: &[Node]) -> Vec<Node> {
     let end = roots.iter().map(|&r| r as usize + 1).max().unwrap_or(0);
     let needed = g.live(roots);
     let mut tangent: Vec<Option<Node>> = vec![None; end.max(x as usize + 1)];

@@ -57,6 +57,11 @@ impl Graph {
         self.nodes[n as usize]
     }
 
+    /// The inputs' values at the build point.
+    pub(super) fn point(&self) -> &[f64] {
+        &self.inputs
+    }
+
     /// The value of node `n` at the build point.
     pub(super) fn value(&self, n: Node) -> f64 {
         self.values[n as usize]
@@ -342,6 +347,34 @@ impl Graph {
         }
         let roots = roots.iter().map(|&r| map[r as usize]).collect();
         (out, roots)
+    }
+
+    /// The `roots` rebuilt in this graph with input k replaced by node `replace[k]` where that is
+    /// given, simplified anew (what a constant replacement makes constant folds). Nodes that read no
+    /// replaced input stay as they are.
+    pub(super) fn replace_inputs(&mut self, roots: &[Node], replace: &[Option<Node>]) -> Vec<Node> {
+        let live = self.live(roots);
+        let mut map: Vec<Node> = (0..live.len() as Node).collect();
+        for (n, &is_live) in live.iter().enumerate() {
+            if !is_live {
+                continue;
+            }
+            let moved = |r: Node| map[r as usize];
+            map[n] = match self.nodes[n] {
+                Instruction::Input(k) => replace.get(k as usize).copied().flatten().unwrap_or(n as Node),
+                Instruction::Const(_) => n as Node,
+                Instruction::Unary(op, x) => self.rebuild(Instruction::Unary(op, moved(x))),
+                Instruction::Binary(op, x, y) => self.rebuild(Instruction::Binary(op, moved(x), moved(y))),
+                Instruction::Powi(x, k) => self.rebuild(Instruction::Powi(moved(x), k)),
+            };
+        }
+        roots.iter().map(|&r| map[r as usize]).collect()
+    }
+
+    /// Whether any of `roots` reads any of the nodes `sources`, directly or not.
+    pub(super) fn reads(&self, roots: &[Node], sources: &[Node]) -> bool {
+        let live = self.live(roots);
+        sources.iter().any(|&s| live.get(s as usize).copied().unwrap_or(false))
     }
 
     /// The straight-line program computing `outputs`: the nodes they read, in order, renumbered.

@@ -4,12 +4,14 @@
 mod derivative;
 mod graph;
 pub mod jit;
+mod linear_step;
 mod pair;
 pub mod program;
 pub mod trace;
 
 pub use derivative::{pair_programs, PairPrograms};
 pub use jit::{JitError, NativeProgram};
+pub use linear_step::{LinearSolution, LinearStep};
 pub use pair::{CompileError, CompiledPair};
 pub use program::{Binary, Instruction, Program, Register, Unary};
 pub use trace::{NotCompiled, Traced};

@@ -13,12 +13,10 @@
 //!
 //! The unknowns are the chart increments z = q_{k+1} − q_k.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 use num_dual::DualNum;
 
-use crate::ad::FirstDerivatives;
-
-use crate::scheme::{Evaluation, Scheme};
+use crate::scheme::{Scheme, StepEquations};
 use crate::{DiscreteLagrangian, System};
 
 /// The position–momentum discrete Euler–Lagrange map, shared by the (+) and (−) variants.
@@ -39,13 +37,9 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
         self.ld.eval_local(base, a, b)
     }
 
-    fn evaluate(&self, p: &[f64; N], d: &FirstDerivatives<N>, mixed: Option<SMatrix<f64, N, N>>) -> Evaluation<N> {
-        Evaluation {
-            residual: SVector::from(*p) + d.da,
-            jacobian: mixed,
-            discrete_energy: d.value,
-            momenta_next: d.db.into(),
-        }
+    /// p_k + D1 L_d = 0, p_{k+1} = D2 L_d.
+    fn equations(&self) -> StepEquations<N> {
+        StepEquations { sign: [1.0; N], advances: [true; N], eliminable: [false; N] }
     }
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {

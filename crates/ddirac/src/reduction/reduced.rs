@@ -29,13 +29,11 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 use num_dual::DualNum;
 
-use crate::ad::FirstDerivatives;
-
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::scheme::{Evaluation, Scheme};
+use crate::scheme::{Scheme, StepEquations};
 use crate::{System, Variant};
 
 /// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
@@ -100,27 +98,12 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         self.lhat(base, a, b)
     }
 
-    fn evaluate(
-        &self,
-        wm: &[f64; N],
-        d: &FirstDerivatives<N>,
-        mut jacobian: Option<SMatrix<f64, N, N>>,
-    ) -> Evaluation<N> {
-        let mut residual = SVector::from(*wm) + d.da;
-        let mut momenta_next = *wm;
-        for &si in &self.reduction.split.shape {
-            momenta_next[si] = d.db[si];
-        }
-        if self.variant == Variant::Plus {
-            // μ_k − ∂l₊/∂γ = 0
-            for &gj in &self.reduction.split.group {
-                residual[gj] = wm[gj] - d.da[gj];
-                if let Some(j) = jacobian.as_mut() {
-                    j.row_mut(gj).neg_mut();
-                }
-            }
-        }
-        Evaluation { residual, jacobian, discrete_energy: d.value, momenta_next }
+    /// (+): w_k + ∂l₊/∂x0 = 0 and ∂l₊/∂γ − μ_k = 0; (−): w_k + ∂l₋/∂x0 = 0 and μ_k + ∂l₋/∂γ = 0.
+    /// w advances to ∂l±/∂x1, μ is conserved.
+    fn equations(&self) -> StepEquations<N> {
+        let group = |i: usize| self.reduction.split.group.contains(&i);
+        let sign = std::array::from_fn(|i| if group(i) && self.variant == Variant::Plus { -1.0 } else { 1.0 });
+        StepEquations { sign, advances: std::array::from_fn(|i| !group(i)), eliminable: std::array::from_fn(group) }
     }
 
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {

@@ -1,0 +1,268 @@
+//! The closed-form step: step equations that are linear in their unknowns, solved by one compiled
+//! elimination per step instead of Newton's method.
+//!
+//! A step solves r(z) = 0 with r_i = ∂f/∂a_i + s_i m_i, the derivatives of the generating function f
+//! taken at (base, 0, z) and m the momenta of step k (see the schemes). For a reduced scheme the rows
+//! of the group unknowns γ are momentum-map equations, and μ is known: it is conserved. When those
+//! rows are affine in γ (the Lagrangian is quadratic in the group velocities, as a kinetic energy
+//! is), they give γ in closed form,
+//!
+//! ```text
+//! γ*(z_x) = −H⁻¹ r_γ(z_x, γ = 0),      H = ∂r_γ/∂γ (independent of γ),
+//! ```
+//!
+//! and the shape rows become R(z_x) = r_x(z_x, γ*(z_x)): γ is eliminated, as paper §7 suggests. When R
+//! is affine in z_x too (the charged particle: the magnetic term is linear in the velocity once μ is
+//! known), its Jacobian J = ∂R/∂z_x does not depend on z_x and the step is
+//!
+//! ```text
+//! z_x = −J⁻¹ R(0),      γ = γ*(z_x),
+//! ```
+//!
+//! with no iteration. Unreduced schemes have no γ: their step is closed-form when r is affine in z.
+//!
+//! Both conditions are decided exactly, on the traced graph: a derivative that reads no unknown is
+//! constant in them. The eliminations are done on the graph too (Gaussian elimination with the pivot
+//! order that partial pivoting picks at the first step, kept from then on), where the structure of
+//! H and J folds away: what remains is the arithmetic a hand-written step would do. One native
+//! program maps (base, m) to z, the value of f, ∂f/∂b (the next momenta) and the residual r(z) of
+//! the full equations, which the stepper checks against the Newton tolerance: a step whose fixed
+//! pivot order has become poor fails that test and is finished by Newton's method.
+
+use std::cell::RefCell;
+
+use super::derivative::{directional, pair_graph, PairGraph};
+use super::graph::{Graph, Node};
+use super::{CompileError, Instruction, NativeProgram, Program, Traced};
+
+/// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
+/// constant (see [`constant_in`]); the residual test of every step guards the rest.
+const CONSTANT_TOLERANCE: f64 = 1e-11;
+
+/// A pivot below this fraction of the largest entry of its matrix at the first step counts as zero.
+const PIVOT_TOLERANCE: f64 = 1e-14;
+
+/// The compiled closed-form step of linear step equations, for N coordinates.
+pub struct LinearStep<const N: usize> {
+    program: NativeProgram,
+    /// Instructions of the step program.
+    pub instructions: usize,
+    buffers: RefCell<(Vec<f64>, Vec<f64>)>,
+}
+
+/// What [`LinearStep::solve`] returns: the unknowns and what the step needs at them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearSolution<const N: usize> {
+    /// The unknowns z (shape increments and γ).
+    pub z: [f64; N],
+    /// f at (base, 0, z): the discrete energy.
+    pub value: f64,
+    /// The residual r(z) of the full step equations.
+    pub residual: [f64; N],
+    /// ∂f/∂b at (base, 0, z): the next momenta where they advance.
+    pub db: [f64; N],
+}
+
+impl<const N: usize> LinearSolution<N> {
+    /// Whether everything is finite and ‖r(z)‖∞ ≤ `threshold` (Newton's residual test).
+    pub fn solves(&self, threshold: f64) -> bool {
+        let finite = self.z.iter().chain(&self.db).all(|v| v.is_finite()) && self.value.is_finite();
+        finite && self.residual.iter().all(|r| r.abs() <= threshold)
+    }
+}
+
+impl<const N: usize> std::fmt::Debug for LinearStep<N> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LinearStep").field("instructions", &self.instructions).finish()
+    }
+}
+
+impl<const N: usize> LinearStep<N> {
+    /// Traces the generating function `f` at (`base`, 0, `z`) with momenta `momenta` and compiles its
+    /// closed-form step, for residual signs `sign` and group unknowns `eliminable` (see the module
+    /// documentation). `None` when the equations are not linear in the unknowns (after eliminating
+    /// γ), or a pivot or an output is zero or not finite at this first step.
+    pub fn new<F>(
+        f: F,
+        base: &[f64; N],
+        z: &[f64; N],
+        momenta: &[f64; N],
+        sign: &[f64; N],
+        eliminable: &[bool; N],
+    ) -> Result<Option<Self>, CompileError>
+    where
+        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    {
+        let Some(program) = step_program(pair_graph(f, base, z)?, momenta, sign, eliminable) else {
+            return Ok(None);
+        };
+        let instructions = program.instructions.len();
+        Ok(Some(Self {
+            program: NativeProgram::compile(&program)?,
+            instructions,
+            buffers: RefCell::new((vec![0.0; 3 * N], vec![0.0; 1 + 3 * N])),
+        }))
+    }
+
+    /// The step from chart base `base` with momenta `momenta`.
+    pub fn solve(&self, base: &[f64; N], momenta: &[f64; N]) -> LinearSolution<N> {
+        let mut buffers = self.buffers.borrow_mut();
+        let (inputs, outputs) = &mut *buffers;
+        inputs[..N].copy_from_slice(base);
+        inputs[2 * N..].copy_from_slice(momenta);
+        self.program.call(inputs, outputs);
+        LinearSolution {
+            z: std::array::from_fn(|i| outputs[i]),
+            value: outputs[N],
+            residual: std::array::from_fn(|i| outputs[N + 1 + i]),
+            db: std::array::from_fn(|i| outputs[2 * N + 1 + i]),
+        }
+    }
+}
+
+/// The program of the closed-form step: inputs (base, b, m) with b unused, outputs (z, f, r, ∂f/∂b).
+fn step_program<const N: usize>(
+    pair: PairGraph,
+    momenta: &[f64; N],
+    sign: &[f64; N],
+    eliminable: &[bool; N],
+) -> Option<Program> {
+    let PairGraph { mut graph, value, da, db } = pair;
+    let g = &mut graph;
+    let b: Vec<Node> = (0..N).map(|j| g.input_node(N + j)).collect::<Option<_>>()?;
+    let m: Vec<Node> = momenta.iter().map(|&v| g.input(v)).collect();
+    let r: Vec<Node> = (0..N)
+        .map(|i| {
+            let s = g.constant(sign[i]);
+            let term = g.mul(s, m[i]);
+            g.add(da[i], term)
+        })
+        .collect();
+    let (group, shape): (Vec<usize>, Vec<usize>) = (0..N).partition(|&i| eliminable[i]);
+    let pick = |nodes: &[Node], at: &[usize]| -> Vec<Node> { at.iter().map(|&i| nodes[i]).collect() };
+    let zero = g.constant(0.0);
+    let inputs = 3 * N;
+
+    // γ*(z_x) from the momentum-map rows, when they are affine in γ.
+    let r_group = pick(&r, &group);
+    let h = jacobian(g, &r_group, &pick(&b, &group));
+    if !constant_in(g, &h.concat(), &pick(&b, &group)) {
+        return None;
+    }
+    let mut replace = vec![None; inputs];
+    for &e in &group {
+        replace[N + e] = Some(zero);
+    }
+    let r_group_0 = g.replace_inputs(&r_group, &replace);
+    let rhs = negated(g, &r_group_0);
+    let gamma = eliminate(g, h, rhs)?;
+
+    // The shape rows with γ eliminated, when they are affine in z_x.
+    let mut replace = vec![None; inputs];
+    for (&e, &gamma_e) in group.iter().zip(&gamma) {
+        replace[N + e] = Some(gamma_e);
+    }
+    let r_shape = g.replace_inputs(&pick(&r, &shape), &replace);
+    let j = jacobian(g, &r_shape, &pick(&b, &shape));
+    if !constant_in(g, &j.concat(), &b) {
+        return None;
+    }
+    let mut replace = vec![None; inputs];
+    for &x in &shape {
+        replace[N + x] = Some(zero);
+    }
+    let r_shape_0 = g.replace_inputs(&r_shape, &replace);
+    let rhs = negated(g, &r_shape_0);
+    let z_shape = eliminate(g, j, rhs)?;
+
+    // z, and f, r, ∂f/∂b there.
+    let mut z = vec![zero; N];
+    let mut replace = vec![None; inputs];
+    for (&x, &z_x) in shape.iter().zip(&z_shape) {
+        (z[x], replace[N + x]) = (z_x, Some(z_x));
+    }
+    for (&e, gamma_e) in group.iter().zip(g.replace_inputs(&gamma, &replace)) {
+        z[e] = gamma_e;
+    }
+    let mut replace = vec![None; inputs];
+    for (slot, &z_i) in replace[N..2 * N].iter_mut().zip(&z) {
+        *slot = Some(z_i);
+    }
+    let at_z: Vec<Node> = std::iter::once(value).chain(r).chain(db).collect();
+    let mut outputs = z;
+    outputs.extend(g.replace_inputs(&at_z, &replace));
+    outputs.iter().all(|&o| graph.value(o).is_finite()).then(|| graph.program(&outputs))
+}
+
+/// Whether `nodes` are constant in the input nodes `wrt`: they do not read them, or (when rounding
+/// hides an exact cancellation from the graph, as in A·v + γ*/h = μ) their values at the build point
+/// and at three points moved along `wrt` agree to [`CONSTANT_TOLERANCE`] relative to the largest.
+fn constant_in(g: &Graph, nodes: &[Node], wrt: &[Node]) -> bool {
+    if !g.reads(nodes, wrt) {
+        return true;
+    }
+    let program = g.program(nodes);
+    let eval = |point: &[f64]| {
+        let mut values = vec![0.0; nodes.len()];
+        program.eval(point, &mut Vec::new(), &mut values);
+        values
+    };
+    let at_build = eval(g.point());
+    let scale = at_build.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+    [0.37, -0.61, 0.83].iter().all(|&step| {
+        let mut point = g.point().to_vec();
+        for (k, &w) in wrt.iter().enumerate() {
+            let Instruction::Input(i) = g.instruction(w) else { continue };
+            let x = &mut point[i as usize];
+            *x += step * (1.0 + 0.1 * k as f64) * (1.0 + x.abs());
+        }
+        eval(&point).iter().zip(&at_build).all(|(v, v0)| (v - v0).abs() <= CONSTANT_TOLERANCE * scale)
+    })
+}
+
+/// The Jacobian ∂rows/∂wrt (rows × wrt) by forward mode along each input node of `wrt`.
+fn jacobian(g: &mut Graph, rows: &[Node], wrt: &[Node]) -> Vec<Vec<Node>> {
+    let columns: Vec<Vec<Node>> = wrt.iter().map(|&w| directional(g, w, rows)).collect();
+    (0..rows.len()).map(|i| columns.iter().map(|c| c[i]).collect()).collect()
+}
+
+fn negated(g: &mut Graph, nodes: &[Node]) -> Vec<Node> {
+    nodes.iter().map(|&n| g.neg(n)).collect()
+}
+
+/// x with A x = rhs, by Gaussian elimination on the graph. The pivot of each column is the entry of
+/// largest magnitude at the graph's build point (partial pivoting there), and the order stays fixed.
+/// Entries that are constant zeros cost nothing. `None` if a pivot is (nearly) zero or not finite
+/// at the build point.
+fn eliminate(g: &mut Graph, mut a: Vec<Vec<Node>>, mut rhs: Vec<Node>) -> Option<Vec<Node>> {
+    let n = rhs.len();
+    let scale = a.iter().flatten().fold(0.0f64, |s, &x| s.max(g.value(x).abs()));
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| g.value(a[i][k]).abs().total_cmp(&g.value(a[j][k]).abs()))?;
+        let pivot = g.value(a[p][k]).abs();
+        if !(pivot.is_finite() && pivot > PIVOT_TOLERANCE * scale) {
+            return None;
+        }
+        a.swap(k, p);
+        rhs.swap(k, p);
+        for r in k + 1..n {
+            let f = g.div(a[r][k], a[k][k]);
+            for c in k + 1..n {
+                let t = g.mul(f, a[k][c]);
+                a[r][c] = g.sub(a[r][c], t);
+            }
+            let t = g.mul(f, rhs[k]);
+            rhs[r] = g.sub(rhs[r], t);
+        }
+    }
+    let mut x = vec![0; n];
+    for k in (0..n).rev() {
+        let mut s = rhs[k];
+        for c in k + 1..n {
+            let t = g.mul(a[k][c], x[c]);
+            s = g.sub(s, t);
+        }
+        x[k] = g.div(s, a[k][k]);
+    }
+    Some(x)
+}
