@@ -245,14 +245,15 @@ fn eliminate(g: &mut Graph, mut a: Vec<Vec<Node>>, mut rhs: Vec<Node>) -> Option
         }
         a.swap(k, p);
         rhs.swap(k, p);
-        for r in k + 1..n {
-            let f = g.div(a[r][k], a[k][k]);
-            for c in k + 1..n {
-                let t = g.mul(f, a[k][c]);
-                a[r][c] = g.sub(a[r][c], t);
+        let (pivot_row, pivot_rhs) = (a[k].clone(), rhs[k]);
+        for (row, rhs_r) in a.iter_mut().zip(rhs.iter_mut()).skip(k + 1) {
+            let f = g.div(row[k], pivot_row[k]);
+            for (entry, &above) in row.iter_mut().zip(&pivot_row).skip(k + 1) {
+                let t = g.mul(f, above);
+                *entry = g.sub(*entry, t);
             }
-            let t = g.mul(f, rhs[k]);
-            rhs[r] = g.sub(rhs[r], t);
+            let t = g.mul(f, pivot_rhs);
+            *rhs_r = g.sub(*rhs_r, t);
         }
     }
     let mut x = vec![0; n];
