@@ -57,6 +57,7 @@ impl<const N: usize> Configuration<N> {
             let moved = *base + d;
             *base = match kind {
                 CoordinateKind::Real => moved,
+                CoordinateKind::Angle if -PI < moved && moved <= PI => moved,
                 CoordinateKind::Angle => {
                     let wrapped = wrap(moved);
                     *turns += ((moved - wrapped) / TAU).round() as i64;

@@ -17,7 +17,7 @@ use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::scheme::{Evaluation, Scheme, StepDerivatives};
+use crate::scheme::{Evaluation, Scheme, StepDerivatives, StepEquations};
 use crate::{
     newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
 };
@@ -64,7 +64,7 @@ pub fn integrate<S: System<N>, const N: usize>(
             check_invariance(&ld, &setup.split, &setup.q0, &setup.dq0)?;
         }
         let reduction = ReducedLagrangian::new(system, method.rule, problem.step, setup.connection.clone())?;
-        let scheme = LagrangePoincareDirac { reduction, variant: method.variant };
+        let scheme = LagrangePoincareDirac::new(reduction, method.variant);
         run.go(&scheme, method, observer)
     } else {
         run.go(&LagrangeDirac { ld }, method, observer)
@@ -180,64 +180,46 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
         };
 
-        for k in 0..=steps {
-            let t = k as f64 * h;
-            let p = scheme.p_from_momenta(&momenta);
+        let n_g = split.n_g();
+        // The scheme momenta hold the momentum map p_g at the group positions (see `Scheme`).
+        let momentum_map = |momenta: &[f64; N]| -> [f64; N] {
             let mut j = [0.0; N];
             for (slot, &gj) in j.iter_mut().zip(&split.group) {
-                *slot = p[gj];
+                *slot = momenta[gj];
             }
-            let j = &j[..split.n_g()];
-            max_drift = j.iter().zip(&j0).fold(max_drift, |m, (a, b)| m.max((a - b).abs()));
-            let report = k % self.output.every == 0 || k == steps;
+            j
+        };
+        let mut until_report = 0;
+        for k in 0..=steps {
+            let t = k as f64 * h;
+            max_drift = split.group.iter().zip(&j0).fold(max_drift, |m, (&gj, j0)| m.max((momenta[gj] - j0).abs()));
+            let report = until_report == 0 || k == steps;
+            until_report = if until_report == 0 { self.output.every - 1 } else { until_report - 1 };
             if k == steps {
                 if report {
-                    let q = config.output(self.output.wrap_angles);
+                    let (q, p, j) = (
+                        config.output(self.output.wrap_angles),
+                        scheme.p_from_momenta(&momenta),
+                        momentum_map(&momenta),
+                    );
                     let e = legendre::hamiltonian(self.system, config.base(), &p);
                     energy.push(e);
-                    let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: None, momentum_map: j };
+                    let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy: None, momentum_map: &j[..n_g] };
                     observer(&row).map_err(Error::Output)?;
                 }
                 break;
             }
 
             let base = scheme.base(config.base());
-            let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let closed_form = derivatives.linear_step().map(|l| l.solve(&base, &momenta));
-            let (stats, last) = match closed_form {
-                Some(s) if s.solves(method.newton.threshold(scale)) => {
-                    z = s.z.into();
-                    let last = Evaluation {
-                        residual: s.residual.into(),
-                        jacobian: None,
-                        discrete_energy: s.value,
-                        momenta_next: equations.advance(&momenta, &s.db),
-                    };
-                    let residual = last.residual.amax();
-                    (newton::NewtonStats { iterations: 1, residual, jacobians: 1 }, last)
-                }
-                attempt => {
-                    // Newton's method, from the closed-form solution when its residual test failed.
-                    if let Some(s) = attempt.filter(|s| s.z.iter().all(|v| v.is_finite())) {
-                        z = s.z.into();
-                    }
-                    let mut last = None;
-                    let stats = newton::solve_with(&mut z, scale, &method.newton, &mut kept, |z, with_jacobian| {
-                        let (d, mixed) = derivatives.first_or_mixed(scheme, &base, z, with_jacobian);
-                        let e = equations.evaluate(&momenta, &d, mixed);
-                        last = Some(e);
-                        (e.residual, e.jacobian)
-                    })
-                    .map_err(|f| Error::Newton {
-                        step: k,
-                        t,
-                        iterations: f.iterations,
-                        residual: f.residual,
-                        reason: f.reason,
-                    })?;
-                    (stats, last.expect("Newton evaluates at least once"))
-                }
-            };
+            let (stats, last) = self
+                .solve_step(scheme, &equations, &derivatives, &base, &momenta, &mut z, &mut kept, &method.newton)
+                .map_err(|f| Error::Newton {
+                    step: k,
+                    t,
+                    iterations: f.iterations,
+                    residual: f.residual,
+                    reason: f.reason,
+                })?;
             let dq = scheme.increment(&z);
             if dq.iter().chain(&last.momenta_next).any(|v| !v.is_finite()) || !last.discrete_energy.is_finite() {
                 return Err(Error::Diverged { step: k, t, what: "state" });
@@ -249,11 +231,12 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             newton_summary.max_residual = newton_summary.max_residual.max(stats.residual);
 
             if report {
-                let q = config.output(self.output.wrap_angles);
+                let (q, p, j) =
+                    (config.output(self.output.wrap_angles), scheme.p_from_momenta(&momenta), momentum_map(&momenta));
                 let e = legendre::hamiltonian(self.system, config.base(), &p);
                 energy.push(e);
-                let row =
-                    Row { k, t, q: &q, p: &p, energy: e, discrete_energy: Some(last.discrete_energy), momentum_map: j };
+                let discrete_energy = Some(last.discrete_energy);
+                let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy, momentum_map: &j[..n_g] };
                 observer(&row).map_err(Error::Output)?;
             }
 
@@ -298,5 +281,49 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             wall_seconds: started.elapsed().as_secs_f64(),
             reference_error,
         })
+    }
+
+    /// Solves one step's equations for the unknowns `z` (which hold the predictor on entry and the
+    /// solution on return): by the compiled closed-form step when the run has one and it passes
+    /// Newton's residual test, otherwise by Newton's method (from the closed-form solution if it
+    /// failed the test).
+    #[allow(clippy::too_many_arguments)]
+    fn solve_step(
+        &self,
+        scheme: &impl Scheme<N>,
+        equations: &StepEquations<N>,
+        derivatives: &StepDerivatives<N>,
+        base: &[f64; N],
+        momenta: &[f64; N],
+        z: &mut SVector<f64, N>,
+        kept: &mut newton::KeptJacobian<N>,
+        options: &newton::NewtonOptions,
+    ) -> Result<(newton::NewtonStats, Evaluation<N>), newton::NewtonFailure> {
+        let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let closed_form = derivatives.linear_step().map(|l| l.solve(base, momenta));
+        if let Some(s) = closed_form {
+            if s.solves(options.threshold(scale)) {
+                *z = s.z.into();
+                let residual = s.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+                let last = Evaluation {
+                    residual: s.residual.into(),
+                    jacobian: None,
+                    discrete_energy: s.value,
+                    momenta_next: equations.advance(momenta, &s.db),
+                };
+                return Ok((newton::NewtonStats { iterations: 1, residual, jacobians: 1 }, last));
+            }
+            if s.z.iter().all(|v| v.is_finite()) {
+                *z = s.z.into();
+            }
+        }
+        let mut last = None;
+        let stats = newton::solve_with(z, scale, options, kept, |z, with_jacobian| {
+            let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
+            let e = equations.evaluate(momenta, &d, mixed);
+            last = Some(e);
+            (e.residual, e.jacobian)
+        })?;
+        Ok((stats, last.expect("Newton evaluates at least once")))
     }
 }

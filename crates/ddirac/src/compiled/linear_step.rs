@@ -29,8 +29,6 @@
 //! the full equations, which the stepper checks against the Newton tolerance: a step whose fixed
 //! pivot order has become poor fails that test and is finished by Newton's method.
 
-use std::cell::RefCell;
-
 use super::derivative::{directional, pair_graph, PairGraph};
 use super::graph::{Graph, Node};
 use super::{CompileError, Instruction, NativeProgram, Program, Traced};
@@ -47,7 +45,6 @@ pub struct LinearStep<const N: usize> {
     program: NativeProgram,
     /// Instructions of the step program.
     pub instructions: usize,
-    buffers: RefCell<(Vec<f64>, Vec<f64>)>,
 }
 
 /// What [`LinearStep::solve`] returns: the unknowns and what the step needs at them.
@@ -97,20 +94,15 @@ impl<const N: usize> LinearStep<N> {
             return Ok(None);
         };
         let instructions = program.instructions.len();
-        Ok(Some(Self {
-            program: NativeProgram::compile(&program)?,
-            instructions,
-            buffers: RefCell::new((vec![0.0; 3 * N], vec![0.0; 1 + 3 * N])),
-        }))
+        Ok(Some(Self { program: NativeProgram::compile(&program)?, instructions }))
     }
 
     /// The step from chart base `base` with momenta `momenta`.
     pub fn solve(&self, base: &[f64; N], momenta: &[f64; N]) -> LinearSolution<N> {
-        let mut buffers = self.buffers.borrow_mut();
-        let (inputs, outputs) = &mut *buffers;
-        inputs[..N].copy_from_slice(base);
-        inputs[2 * N..].copy_from_slice(momenta);
-        self.program.call(inputs, outputs);
+        let inputs = [*base, [0.0; N], *momenta];
+        let mut outputs = [[0.0; N]; 4];
+        let outputs = &mut outputs.as_flattened_mut()[..1 + 3 * N];
+        self.program.call(inputs.as_flattened(), outputs);
         LinearSolution {
             z: std::array::from_fn(|i| outputs[i]),
             value: outputs[N],
@@ -155,6 +147,7 @@ fn step_program<const N: usize>(
     }
     let r_group_0 = g.replace_inputs(&r_group, &replace);
     let rhs = negated(g, &r_group_0);
+    let h = at(g, h, &replace);
     let gamma = eliminate(g, h, rhs)?;
 
     // The shape rows with γ eliminated, when they are affine in z_x.
@@ -173,6 +166,7 @@ fn step_program<const N: usize>(
     }
     let r_shape_0 = g.replace_inputs(&r_shape, &replace);
     let rhs = negated(g, &r_shape_0);
+    let j = at(g, j, &replace);
     let z_shape = eliminate(g, j, rhs)?;
 
     // z, and f, r, ∂f/∂b there.
@@ -226,17 +220,27 @@ fn jacobian(g: &mut Graph, rows: &[Node], wrt: &[Node]) -> Vec<Vec<Node>> {
     (0..rows.len()).map(|i| columns.iter().map(|c| c[i]).collect()).collect()
 }
 
+/// The entries of `matrix` with the inputs replaced as in [`Graph::replace_inputs`]: a matrix constant
+/// in some unknowns up to rounding, taken at zero there, so that it reads none of them.
+fn at(g: &mut Graph, matrix: Vec<Vec<Node>>, replace: &[Option<Node>]) -> Vec<Vec<Node>> {
+    matrix.into_iter().map(|row| g.replace_inputs(&row, replace)).collect()
+}
+
 fn negated(g: &mut Graph, nodes: &[Node]) -> Vec<Node> {
     nodes.iter().map(|&n| g.neg(n)).collect()
 }
 
 /// x with A x = rhs, by Gaussian elimination on the graph. The pivot of each column is the entry of
 /// largest magnitude at the graph's build point (partial pivoting there), and the order stays fixed.
+/// Each pivot is inverted once and its row and the back substitution multiply by the inverse, which
+/// keeps divisions, the slowest operations, off the chain that one step's solution feeds to the next.
 /// Entries that are constant zeros cost nothing. `None` if a pivot is (nearly) zero or not finite
 /// at the build point.
 fn eliminate(g: &mut Graph, mut a: Vec<Vec<Node>>, mut rhs: Vec<Node>) -> Option<Vec<Node>> {
     let n = rhs.len();
     let scale = a.iter().flatten().fold(0.0f64, |s, &x| s.max(g.value(x).abs()));
+    let one = g.constant(1.0);
+    let mut inverse = Vec::with_capacity(n);
     for k in 0..n {
         let p = (k..n).max_by(|&i, &j| g.value(a[i][k]).abs().total_cmp(&g.value(a[j][k]).abs()))?;
         let pivot = g.value(a[p][k]).abs();
@@ -245,9 +249,10 @@ fn eliminate(g: &mut Graph, mut a: Vec<Vec<Node>>, mut rhs: Vec<Node>) -> Option
         }
         a.swap(k, p);
         rhs.swap(k, p);
+        inverse.push(g.div(one, a[k][k]));
         let (pivot_row, pivot_rhs) = (a[k].clone(), rhs[k]);
         for (row, rhs_r) in a.iter_mut().zip(rhs.iter_mut()).skip(k + 1) {
-            let f = g.div(row[k], pivot_row[k]);
+            let f = g.mul(row[k], inverse[k]);
             for (entry, &above) in row.iter_mut().zip(&pivot_row).skip(k + 1) {
                 let t = g.mul(f, above);
                 *entry = g.sub(*entry, t);
@@ -263,7 +268,67 @@ fn eliminate(g: &mut Graph, mut a: Vec<Vec<Node>>, mut rhs: Vec<Node>) -> Option
             let t = g.mul(a[k][c], x[c]);
             s = g.sub(s, t);
         }
-        x[k] = g.div(s, a[k][k]);
+        x[k] = g.mul(s, inverse[k]);
     }
     Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const NO_GROUP: [bool; 2] = [false, false];
+
+    #[test]
+    fn a_zero_first_pivot_takes_the_other_row() {
+        // f = a0 b1 + a1 (b0 + 2 b1): r = (b1 + m0, b0 + 2 b1 + m1), J = [[0, 1], [1, 2]].
+        let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[1] + a[1] * (b[0] + b[1] * 2.0);
+        let step = LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &NO_GROUP).unwrap().unwrap();
+        let s = step.solve(&[0.0; 2], &[3.0, 5.0]);
+        assert_eq!(s.z, [1.0, -3.0]);
+        assert_eq!(s.residual, [0.0, 0.0]);
+        assert!(s.solves(0.0));
+    }
+
+    #[test]
+    fn group_unknowns_are_eliminated_first() {
+        // r_x = 3 b0 + b1 + m0, r_γ = 4 b1 + b0 − m1 (sign −1): γ* = (m1 − b0) / 4, then
+        // (11/4) b0 + m1/4 + m0 = 0.
+        let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
+            a[0] * (b[0] * 3.0 + b[1]) + a[1] * (b[1] * 4.0 + b[0]) + b[0] * b[0] * b[1]
+        };
+        let step =
+            LinearStep::new(f, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]).unwrap().unwrap();
+        let (m0, m1) = (0.5, 2.0);
+        let s = step.solve(&[0.0; 2], &[m0, m1]);
+        let b0 = -(m1 / 4.0 + m0) * 4.0 / 11.0;
+        assert!((s.z[0] - b0).abs() < 1e-15 && (s.z[1] - (m1 - b0) / 4.0).abs() < 1e-15, "{:?}", s.z);
+        assert!(s.residual.iter().all(|r| r.abs() < 1e-15), "{:?}", s.residual);
+        // ∂f/∂b at a = 0 is that of the last term: (2 b0 b1, b0²).
+        assert!((s.db[0] - 2.0 * s.z[0] * s.z[1]).abs() < 1e-15 && (s.db[1] - s.z[0] * s.z[0]).abs() < 1e-15);
+        assert!((s.value - s.z[0] * s.z[0] * s.z[1]).abs() < 1e-15);
+    }
+
+    #[test]
+    fn nonlinear_equations_have_no_closed_form() {
+        // r_0 = b0² + m0.
+        let square = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] * b[0] + a[1] * b[1];
+        assert!(LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &NO_GROUP).unwrap().is_none());
+        // Linear in γ, but r_x = 3 b0 + γ*² + m0 is not linear in b0 once γ* = (m1 − b0) / 4 is in.
+        let quadratic_after = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
+            a[0] * (b[0] * 3.0 + b[1] * b[1]) + a[1] * (b[1] * 4.0 + b[0])
+        };
+        let step = LinearStep::new(quadratic_after, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]);
+        assert!(step.unwrap().is_none());
+        // Not linear in γ.
+        let cubic = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] + a[1] * b[1] * b[1] * b[1];
+        let step = LinearStep::new(cubic, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]);
+        assert!(step.unwrap().is_none());
+    }
+
+    #[test]
+    fn a_singular_system_has_no_closed_form() {
+        let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| (a[0] + a[1]) * (b[0] + b[1]);
+        assert!(LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &NO_GROUP).unwrap().is_none());
+    }
 }

@@ -38,11 +38,19 @@ use crate::{System, Variant};
 
 /// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
 pub(crate) struct LagrangePoincareDirac<'a, S> {
-    pub reduction: ReducedLagrangian<'a, S>,
-    pub variant: Variant,
+    reduction: ReducedLagrangian<'a, S>,
+    variant: Variant,
+    /// Whether the connection K is zero (then K(x1 − x0) and Kᵀμ vanish).
+    flat: bool,
 }
 
-impl<S> LagrangePoincareDirac<'_, S> {
+impl<'a, S> LagrangePoincareDirac<'a, S> {
+    /// The scheme of `variant` on the reduced Lagrangians of `reduction`.
+    pub(crate) fn new(reduction: ReducedLagrangian<'a, S>, variant: Variant) -> Self {
+        let flat = reduction.connection.is_zero();
+        Self { reduction, variant, flat }
+    }
+
     /// l̂(a, b): the reduced Lagrangian l± with x0 = x_k + a_x, x1 = x_k + b_x, γ = b_γ + a_γ.
     pub(crate) fn lhat<D, B, const N: usize>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
@@ -61,6 +69,9 @@ impl<S> LagrangePoincareDirac<'_, S> {
     }
 
     fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
+        if self.flat {
+            return 0.0;
+        }
         self.reduction
             .split
             .shape
@@ -71,6 +82,9 @@ impl<S> LagrangePoincareDirac<'_, S> {
     }
 
     fn kt_mu(&self, i: usize, mu_full: &[f64]) -> f64 {
+        if self.flat {
+            return 0.0;
+        }
         self.reduction
             .split
             .group
