@@ -17,7 +17,7 @@ use crate::mechanics::legendre;
 use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::scheme::{Evaluation, Scheme, StepDerivatives, StepEquations};
+use crate::scheme::{Scheme, StepDerivatives, StepEquations};
 use crate::{
     newton, Connection, DiscreteLagrangian, Error, InitialMomentum, Method, OutputOptions, Problem, Split, System,
 };
@@ -158,8 +158,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         let mut config = Configuration::new(self.setup.q0, kinds);
         let mut momenta = scheme.momenta_from_p(&self.setup.p0);
         let j0 = split.g(&self.setup.p0);
-        let (mut z_prev, mut z_prev2): (Option<SVector<f64, N>>, Option<SVector<f64, N>>) = (None, None);
-        let mut z = scheme.unknowns(&self.setup.dq0);
+        let mut predictor = Predictor::new(scheme.unknowns(&self.setup.dq0));
         let (mut energy, mut discrete_energy) = (Accumulator::default(), Accumulator::default());
         let mut newton_summary = NewtonSummary::default();
         let equations = scheme.equations();
@@ -169,7 +168,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             method.differentiation,
             steps,
             &scheme.base(config.base()),
-            &z.into(),
+            &predictor.predict().into(),
             &momenta,
         )
         .map_err(Error::NotCompiled)?;
@@ -211,8 +210,8 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             }
 
             let base = scheme.base(config.base());
-            let (stats, last) = self
-                .solve_step(scheme, &equations, &derivatives, &base, &momenta, &mut z, &mut kept, &method.newton)
+            let Solved { z, momenta_next, discrete_energy: step_energy, stats } = self
+                .solve_step(scheme, &equations, &derivatives, &base, &momenta, &predictor, &mut kept, &method.newton)
                 .map_err(|f| Error::Newton {
                     step: k,
                     t,
@@ -221,10 +220,10 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                     reason: f.reason,
                 })?;
             let dq = scheme.increment(&z);
-            if dq.iter().chain(&last.momenta_next).any(|v| !v.is_finite()) || !last.discrete_energy.is_finite() {
+            if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !step_energy.is_finite() {
                 return Err(Error::Diverged { step: k, t, what: "state" });
             }
-            discrete_energy.push(last.discrete_energy);
+            discrete_energy.push(step_energy);
             newton_summary.total_iterations += stats.iterations;
             newton_summary.total_jacobians += stats.jacobians;
             newton_summary.max_iterations = newton_summary.max_iterations.max(stats.iterations);
@@ -235,22 +234,14 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                     (config.output(self.output.wrap_angles), scheme.p_from_momenta(&momenta), momentum_map(&momenta));
                 let e = legendre::hamiltonian(self.system, config.base(), &p);
                 energy.push(e);
-                let discrete_energy = Some(last.discrete_energy);
+                let discrete_energy = Some(step_energy);
                 let row = Row { k, t, q: &q, p: &p, energy: e, discrete_energy, momentum_map: &j[..n_g] };
                 observer(&row).map_err(Error::Output)?;
             }
 
             config.advance(&dq);
-            momenta = last.momenta_next;
-            // Quadratic extrapolation of the unknowns from the last three steps (linear after two).
-            let predicted = match (z_prev, z_prev2) {
-                (Some(p1), Some(p2)) => 3.0 * (z - p1) + p2,
-                (Some(p1), None) => 2.0 * z - p1,
-                _ => z,
-            };
-            z_prev2 = z_prev;
-            z_prev = Some(z);
-            z = predicted;
+            momenta = momenta_next;
+            predictor.push(z);
         }
 
         let final_q = config.output(self.output.wrap_angles).to_vec();
@@ -283,10 +274,9 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         })
     }
 
-    /// Solves one step's equations for the unknowns `z` (which hold the predictor on entry and the
-    /// solution on return): by the compiled closed-form step when the run has one and it passes
-    /// Newton's residual test, otherwise by Newton's method (from the closed-form solution if it
-    /// failed the test).
+    /// Solves one step's equations for the unknowns z: by the compiled closed-form step when the run
+    /// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
+    /// solution if it failed the test, or from the predictor.
     #[allow(clippy::too_many_arguments)]
     fn solve_step(
         &self,
@@ -295,35 +285,66 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         derivatives: &StepDerivatives<N>,
         base: &[f64; N],
         momenta: &[f64; N],
-        z: &mut SVector<f64, N>,
+        predictor: &Predictor<N>,
         kept: &mut newton::KeptJacobian<N>,
         options: &newton::NewtonOptions,
-    ) -> Result<(newton::NewtonStats, Evaluation<N>), newton::NewtonFailure> {
+    ) -> Result<Solved<N>, newton::NewtonFailure> {
         let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let closed_form = derivatives.linear_step().map(|l| l.solve(base, momenta));
         if let Some(s) = closed_form {
-            if s.solves(options.threshold(scale)) {
-                *z = s.z.into();
-                let residual = s.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-                let last = Evaluation {
-                    residual: s.residual.into(),
-                    jacobian: None,
-                    discrete_energy: s.value,
-                    momenta_next: equations.advance(momenta, &s.db),
-                };
-                return Ok((newton::NewtonStats { iterations: 1, residual, jacobians: 1 }, last));
-            }
-            if s.z.iter().all(|v| v.is_finite()) {
-                *z = s.z.into();
+            if let Some(residual) = s.solves(options.threshold(scale)) {
+                let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
+                return Ok(Solved { z: s.z.into(), momenta_next: s.momenta_next, discrete_energy: s.value, stats });
             }
         }
+        let mut z = match closed_form {
+            Some(s) if s.z.iter().all(|v| v.is_finite()) => s.z.into(),
+            _ => predictor.predict(),
+        };
         let mut last = None;
-        let stats = newton::solve_with(z, scale, options, kept, |z, with_jacobian| {
+        let stats = newton::solve_with(&mut z, scale, options, kept, |z, with_jacobian| {
             let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
             let e = equations.evaluate(momenta, &d, mixed);
             last = Some(e);
             (e.residual, e.jacobian)
         })?;
-        Ok((stats, last.expect("Newton evaluates at least once")))
+        let last = last.expect("Newton evaluates at least once");
+        Ok(Solved { z, momenta_next: last.momenta_next, discrete_energy: last.discrete_energy, stats })
+    }
+}
+
+/// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
+struct Solved<const N: usize> {
+    z: SVector<f64, N>,
+    momenta_next: [f64; N],
+    discrete_energy: f64,
+    stats: newton::NewtonStats,
+}
+
+/// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated
+/// quadratically from the last three (linearly after two, the last one after one), and a first guess
+/// before any.
+struct Predictor<const N: usize> {
+    last: [SVector<f64, N>; 3],
+    count: usize,
+}
+
+impl<const N: usize> Predictor<N> {
+    fn new(first: SVector<f64, N>) -> Self {
+        Self { last: [first; 3], count: 0 }
+    }
+
+    fn push(&mut self, z: SVector<f64, N>) {
+        self.last = [z, self.last[0], self.last[1]];
+        self.count += 1;
+    }
+
+    fn predict(&self) -> SVector<f64, N> {
+        let [z, z1, z2] = self.last;
+        match self.count {
+            0 | 1 => z,
+            2 => 2.0 * z - z1,
+            _ => 3.0 * (z - z1) + z2,
+        }
     }
 }

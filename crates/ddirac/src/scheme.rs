@@ -142,7 +142,8 @@ impl<const N: usize> StepDerivatives<N> {
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
-            let linear = LinearStep::new(generating, base, z, momenta, &equations.sign, &equations.eliminable)?;
+            let StepEquations { sign, advances, eliminable } = &equations;
+            let linear = LinearStep::new(generating, base, z, momenta, sign, advances, eliminable)?;
             if let Some(linear) = &linear {
                 check_linear(scheme, &equations, linear, base, momenta)?;
             }
@@ -187,7 +188,8 @@ impl<const N: usize> StepDerivatives<N> {
 }
 
 /// Checks the closed-form step at (`base`, `momenta`) against dual numbers at its solution: the
-/// residual of the step equations vanishes there (relative 1e-9), and the value and ∂f/∂b agree.
+/// residual of the step equations vanishes there (relative 1e-9), and the value and the next
+/// momenta agree.
 fn check_linear<const N: usize>(
     scheme: &impl Scheme<N>,
     equations: &StepEquations<N>,
@@ -197,16 +199,17 @@ fn check_linear<const N: usize>(
 ) -> Result<(), CompileError> {
     let solution = linear.solve(base, momenta);
     let (dual, _) = ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &solution.z, false);
-    let residual = equations.evaluate(momenta, &dual, None).residual;
+    let evaluation = equations.evaluate(momenta, &dual, None);
     let scale = momenta.iter().chain(dual.da.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
     let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;
-    let db_scale = dual.db.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let next = evaluation.momenta_next;
+    let next_scale = next.iter().fold(1.0f64, |m, x| m.max(x.abs()));
     let checks = [
-        ("closed-form residual", residual.amax(), 0.0, scale),
+        ("closed-form residual", evaluation.residual.amax(), 0.0, scale),
         ("value", solution.value, dual.value, dual.value.abs().max(1.0)),
     ];
-    let db = (0..N).map(|i| ("∂f/∂b", solution.db[i], dual.db[i], db_scale));
-    match checks.into_iter().chain(db).find(|&(_, c, d, s)| !closest(c, d, s)) {
+    let momenta = (0..N).map(|i| ("next momenta", solution.momenta_next[i], next[i], next_scale));
+    match checks.into_iter().chain(momenta).find(|&(_, c, d, s)| !closest(c, d, s)) {
         Some((what, compiled, dual, _)) => Err(CompileError::Disagrees { what, compiled, dual }),
         None => Ok(()),
     }

@@ -25,7 +25,7 @@
 //! constant in them. The eliminations are done on the graph too (Gaussian elimination with the pivot
 //! order that partial pivoting picks at the first step, kept from then on), where the structure of
 //! H and J folds away: what remains is the arithmetic a hand-written step would do. One native
-//! program maps (base, m) to z, the value of f, ∂f/∂b (the next momenta) and the residual r(z) of
+//! program maps (base, m) to z, the value of f, the next momenta (∂f/∂b where they advance) and the residual r(z) of
 //! the full equations, which the stepper checks against the Newton tolerance: a step whose fixed
 //! pivot order has become poor fails that test and is finished by Newton's method.
 
@@ -56,15 +56,16 @@ pub struct LinearSolution<const N: usize> {
     pub value: f64,
     /// The residual r(z) of the full step equations.
     pub residual: [f64; N],
-    /// ∂f/∂b at (base, 0, z): the next momenta where they advance.
-    pub db: [f64; N],
+    /// The momenta of the next step: ∂f/∂b at (base, 0, z) where they advance, m elsewhere.
+    pub momenta_next: [f64; N],
 }
 
 impl<const N: usize> LinearSolution<N> {
-    /// Whether everything is finite and ‖r(z)‖∞ ≤ `threshold` (Newton's residual test).
-    pub fn solves(&self, threshold: f64) -> bool {
-        let finite = self.z.iter().chain(&self.db).all(|v| v.is_finite()) && self.value.is_finite();
-        finite && self.residual.iter().all(|r| r.abs() <= threshold)
+    /// ‖r(z)‖∞ if everything is finite and it is at most `threshold` (Newton's residual test).
+    pub fn solves(&self, threshold: f64) -> Option<f64> {
+        let finite = self.z.iter().chain(&self.momenta_next).all(|v| v.is_finite()) && self.value.is_finite();
+        let residual = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+        (finite && residual <= threshold).then_some(residual)
     }
 }
 
@@ -76,7 +77,8 @@ impl<const N: usize> std::fmt::Debug for LinearStep<N> {
 
 impl<const N: usize> LinearStep<N> {
     /// Traces the generating function `f` at (`base`, 0, `z`) with momenta `momenta` and compiles its
-    /// closed-form step, for residual signs `sign` and group unknowns `eliminable` (see the module
+    /// closed-form step, for residual signs `sign`, advancing momenta `advances` and group unknowns
+    /// `eliminable` (see the module
     /// documentation). `None` when the equations are not linear in the unknowns (after eliminating
     /// γ), or a pivot or an output is zero or not finite at this first step.
     pub fn new<F>(
@@ -85,12 +87,13 @@ impl<const N: usize> LinearStep<N> {
         z: &[f64; N],
         momenta: &[f64; N],
         sign: &[f64; N],
+        advances: &[bool; N],
         eliminable: &[bool; N],
     ) -> Result<Option<Self>, CompileError>
     where
         F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
     {
-        let Some(program) = step_program(pair_graph(f, base, z)?, momenta, sign, eliminable) else {
+        let Some(program) = step_program(pair_graph(f, base, z)?, momenta, sign, advances, eliminable) else {
             return Ok(None);
         };
         let instructions = program.instructions.len();
@@ -99,7 +102,7 @@ impl<const N: usize> LinearStep<N> {
 
     /// The step from chart base `base` with momenta `momenta`.
     pub fn solve(&self, base: &[f64; N], momenta: &[f64; N]) -> LinearSolution<N> {
-        let inputs = [*base, [0.0; N], *momenta];
+        let inputs = [*base, *momenta];
         let mut outputs = [[0.0; N]; 4];
         let outputs = &mut outputs.as_flattened_mut()[..1 + 3 * N];
         self.program.call(inputs.as_flattened(), outputs);
@@ -107,22 +110,33 @@ impl<const N: usize> LinearStep<N> {
             z: std::array::from_fn(|i| outputs[i]),
             value: outputs[N],
             residual: std::array::from_fn(|i| outputs[N + 1 + i]),
-            db: std::array::from_fn(|i| outputs[2 * N + 1 + i]),
+            momenta_next: std::array::from_fn(|i| outputs[2 * N + 1 + i]),
         }
     }
 }
 
-/// The program of the closed-form step: inputs (base, b, m) with b unused, outputs (z, f, r, ∂f/∂b).
+/// The program of the closed-form step: inputs (base, m), outputs (z, f, r, m').
 fn step_program<const N: usize>(
     pair: PairGraph,
     momenta: &[f64; N],
     sign: &[f64; N],
+    advances: &[bool; N],
     eliminable: &[bool; N],
 ) -> Option<Program> {
     let PairGraph { mut graph, value, da, db } = pair;
     let g = &mut graph;
     let b: Vec<Node> = (0..N).map(|j| g.input_node(N + j)).collect::<Option<_>>()?;
-    let m: Vec<Node> = momenta.iter().map(|&v| g.input(v)).collect();
+    // Momenta that do not advance (μ) are conserved exactly: constants of the run.
+    let m: Vec<Node> = (0..N)
+        .map(|i| {
+            let input = g.input(momenta[i]);
+            if advances[i] {
+                input
+            } else {
+                g.constant(momenta[i])
+            }
+        })
+        .collect();
     let r: Vec<Node> = (0..N)
         .map(|i| {
             let s = g.constant(sign[i]);
@@ -183,9 +197,28 @@ fn step_program<const N: usize>(
         *slot = Some(z_i);
     }
     let at_z: Vec<Node> = std::iter::once(value).chain(r).chain(db).collect();
-    let mut outputs = z;
-    outputs.extend(g.replace_inputs(&at_z, &replace));
-    outputs.iter().all(|&o| graph.value(o).is_finite()).then(|| graph.program(&outputs))
+    let at_z = g.replace_inputs(&at_z, &replace);
+    let momenta_next = (0..N).map(|i| if advances[i] { at_z[1 + N + i] } else { m[i] });
+    let outputs: Vec<Node> = z.into_iter().chain(at_z[..=N].iter().copied()).chain(momenta_next).collect();
+    if !outputs.iter().all(|&o| graph.value(o).is_finite()) {
+        return None;
+    }
+    without_unknowns(graph.program(&outputs), N)
+}
+
+/// `program` with its inputs (base, b, m) renumbered to (base, m): the solution reads no b.
+fn without_unknowns(mut program: Program, n: usize) -> Option<Program> {
+    for instruction in &mut program.instructions {
+        if let Instruction::Input(k) = instruction {
+            match (*k as usize) / n {
+                0 => {}
+                1 => return None,
+                _ => *k -= n as u32,
+            }
+        }
+    }
+    program.inputs -= n;
+    Some(program)
 }
 
 /// Whether `nodes` are constant in the input nodes `wrt`: they do not read them, or (when rounding
@@ -221,9 +254,19 @@ fn jacobian(g: &mut Graph, rows: &[Node], wrt: &[Node]) -> Vec<Vec<Node>> {
 }
 
 /// The entries of `matrix` with the inputs replaced as in [`Graph::replace_inputs`]: a matrix constant
-/// in some unknowns up to rounding, taken at zero there, so that it reads none of them.
+/// in some unknowns up to rounding, taken at zero there, so that it reads none of them. When it is
+/// constant in the base too (a uniform field, a constant mass matrix), it is taken at the first
+/// step's base and becomes a constant, and so does its elimination.
 fn at(g: &mut Graph, matrix: Vec<Vec<Node>>, replace: &[Option<Node>]) -> Vec<Vec<Node>> {
-    matrix.into_iter().map(|row| g.replace_inputs(&row, replace)).collect()
+    let n = replace.len() / 3;
+    let base: Vec<Node> = (0..n).filter_map(|k| g.input_node(k)).collect();
+    let mut frozen = replace.to_vec();
+    if constant_in(g, &matrix.concat(), &base) {
+        for (k, slot) in frozen.iter_mut().enumerate().take(n) {
+            *slot = Some(g.constant(g.point()[k]));
+        }
+    }
+    matrix.into_iter().map(|row| g.replace_inputs(&row, &frozen)).collect()
 }
 
 fn negated(g: &mut Graph, nodes: &[Node]) -> Vec<Node> {
@@ -283,11 +326,12 @@ mod tests {
     fn a_zero_first_pivot_takes_the_other_row() {
         // f = a0 b1 + a1 (b0 + 2 b1): r = (b1 + m0, b0 + 2 b1 + m1), J = [[0, 1], [1, 2]].
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[1] + a[1] * (b[0] + b[1] * 2.0);
-        let step = LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &NO_GROUP).unwrap().unwrap();
+        let step =
+            LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP).unwrap().unwrap();
         let s = step.solve(&[0.0; 2], &[3.0, 5.0]);
         assert_eq!(s.z, [1.0, -3.0]);
         assert_eq!(s.residual, [0.0, 0.0]);
-        assert!(s.solves(0.0));
+        assert_eq!(s.solves(0.0), Some(0.0));
     }
 
     #[test]
@@ -298,14 +342,16 @@ mod tests {
             a[0] * (b[0] * 3.0 + b[1]) + a[1] * (b[1] * 4.0 + b[0]) + b[0] * b[0] * b[1]
         };
         let step =
-            LinearStep::new(f, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]).unwrap().unwrap();
+            LinearStep::new(f, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[true, false], &[false, true])
+                .unwrap()
+                .unwrap();
         let (m0, m1) = (0.5, 2.0);
         let s = step.solve(&[0.0; 2], &[m0, m1]);
         let b0 = -(m1 / 4.0 + m0) * 4.0 / 11.0;
         assert!((s.z[0] - b0).abs() < 1e-15 && (s.z[1] - (m1 - b0) / 4.0).abs() < 1e-15, "{:?}", s.z);
         assert!(s.residual.iter().all(|r| r.abs() < 1e-15), "{:?}", s.residual);
-        // ∂f/∂b at a = 0 is that of the last term: (2 b0 b1, b0²).
-        assert!((s.db[0] - 2.0 * s.z[0] * s.z[1]).abs() < 1e-15 && (s.db[1] - s.z[0] * s.z[0]).abs() < 1e-15);
+        // ∂f/∂b0 at a = 0 is that of the last term, 2 b0 b1; m1 does not advance.
+        assert!((s.momenta_next[0] - 2.0 * s.z[0] * s.z[1]).abs() < 1e-15 && s.momenta_next[1] == m1);
         assert!((s.value - s.z[0] * s.z[0] * s.z[1]).abs() < 1e-15);
     }
 
@@ -313,22 +359,35 @@ mod tests {
     fn nonlinear_equations_have_no_closed_form() {
         // r_0 = b0² + m0.
         let square = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] * b[0] + a[1] * b[1];
-        assert!(LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &NO_GROUP).unwrap().is_none());
+        assert!(LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &[true; 2], &NO_GROUP)
+            .unwrap()
+            .is_none());
         // Linear in γ, but r_x = 3 b0 + γ*² + m0 is not linear in b0 once γ* = (m1 − b0) / 4 is in.
         let quadratic_after = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
             a[0] * (b[0] * 3.0 + b[1] * b[1]) + a[1] * (b[1] * 4.0 + b[0])
         };
-        let step = LinearStep::new(quadratic_after, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]);
+        let step = LinearStep::new(
+            quadratic_after,
+            &[0.0; 2],
+            &[0.3, 0.1],
+            &[0.5, 2.0],
+            &[1.0, -1.0],
+            &[true, false],
+            &[false, true],
+        );
         assert!(step.unwrap().is_none());
         // Not linear in γ.
         let cubic = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] + a[1] * b[1] * b[1] * b[1];
-        let step = LinearStep::new(cubic, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[false, true]);
+        let step =
+            LinearStep::new(cubic, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[true, false], &[false, true]);
         assert!(step.unwrap().is_none());
     }
 
     #[test]
     fn a_singular_system_has_no_closed_form() {
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| (a[0] + a[1]) * (b[0] + b[1]);
-        assert!(LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &NO_GROUP).unwrap().is_none());
+        assert!(LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP)
+            .unwrap()
+            .is_none());
     }
 }
