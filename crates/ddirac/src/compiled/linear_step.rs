@@ -100,7 +100,9 @@ impl<const N: usize> LinearStep<N> {
         Ok(Some(Self { program: NativeProgram::compile(&program)?, instructions }))
     }
 
-    /// The step from chart base `base` with momenta `momenta`.
+    /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are
+    /// constants of the compiled step (a scheme conserves them): only their values given to
+    /// [`LinearStep::new`] are used.
     pub fn solve(&self, base: &[f64; N], momenta: &[f64; N]) -> LinearSolution<N> {
         let inputs = [*base, *momenta];
         let mut outputs = [[0.0; N]; 4];
