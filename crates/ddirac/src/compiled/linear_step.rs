@@ -127,7 +127,6 @@ fn step_program<const N: usize>(
 ) -> Option<Program> {
     let PairGraph { mut graph, value, da, db } = pair;
     let g = &mut graph;
-    let b: Vec<Node> = (0..N).map(|j| g.input_node(N + j)).collect::<Option<_>>()?;
     // Momenta that do not advance (μ) are conserved exactly: constants of the run.
     let m: Vec<Node> = (0..N)
         .map(|i| {
@@ -152,19 +151,7 @@ fn step_program<const N: usize>(
     let inputs = 3 * N;
 
     // γ*(z_x) from the momentum-map rows, when they are affine in γ.
-    let r_group = pick(&r, &group);
-    let h = jacobian(g, &r_group, &pick(&b, &group));
-    if !constant_in(g, &h.concat(), &pick(&b, &group)) {
-        return None;
-    }
-    let mut replace = vec![None; inputs];
-    for &e in &group {
-        replace[N + e] = Some(zero);
-    }
-    let r_group_0 = g.replace_inputs(&r_group, &replace);
-    let rhs = negated(g, &r_group_0);
-    let h = at(g, h, &replace);
-    let gamma = eliminate(g, h, rhs)?;
+    let gamma = solve_affine(g, &pick(&r, &group), &group, N)?;
 
     // The shape rows with γ eliminated, when they are affine in z_x.
     let mut replace = vec![None; inputs];
@@ -172,18 +159,7 @@ fn step_program<const N: usize>(
         replace[N + e] = Some(gamma_e);
     }
     let r_shape = g.replace_inputs(&pick(&r, &shape), &replace);
-    let j = jacobian(g, &r_shape, &pick(&b, &shape));
-    if !constant_in(g, &j.concat(), &b) {
-        return None;
-    }
-    let mut replace = vec![None; inputs];
-    for &x in &shape {
-        replace[N + x] = Some(zero);
-    }
-    let r_shape_0 = g.replace_inputs(&r_shape, &replace);
-    let rhs = negated(g, &r_shape_0);
-    let j = at(g, j, &replace);
-    let z_shape = eliminate(g, j, rhs)?;
+    let z_shape = solve_affine(g, &r_shape, &shape, N)?;
 
     // z, and f, r, ∂f/∂b there.
     let mut z = vec![zero; N];
@@ -221,6 +197,27 @@ fn without_unknowns(mut program: Program, n: usize) -> Option<Program> {
     }
     program.inputs -= n;
     Some(program)
+}
+
+/// The solution of `rows` = 0 for the unknowns b_i, i ∈ `unknowns` (inputs n + i of the graph), when
+/// the rows are affine in them: −J⁻¹ rows(b_i = 0), with J = ∂rows/∂b_i constant in them. Other
+/// unknowns the rows read stay variables of the result. `None` if the rows are not affine in the
+/// unknowns or J is singular at the build point.
+fn solve_affine(g: &mut Graph, rows: &[Node], unknowns: &[usize], n: usize) -> Option<Vec<Node>> {
+    let wrt: Vec<Node> = unknowns.iter().map(|&i| g.input_node(n + i)).collect::<Option<_>>()?;
+    let j = jacobian(g, rows, &wrt);
+    if !constant_in(g, &j.concat(), &wrt) {
+        return None;
+    }
+    let zero = g.constant(0.0);
+    let mut replace = vec![None; 3 * n];
+    for &i in unknowns {
+        replace[n + i] = Some(zero);
+    }
+    let at_zero = g.replace_inputs(rows, &replace);
+    let rhs = negated(g, &at_zero);
+    let j = at(g, j, &replace);
+    eliminate(g, j, rhs)
 }
 
 /// Whether `nodes` are constant in the input nodes `wrt`: they do not read them, or (when rounding
