@@ -40,36 +40,46 @@ impl<const N: usize> Factorization<N> {
             return None;
         }
         let threshold = rel_tol * scale;
-        let mut lu: [[f64; N]; N] = std::array::from_fn(|r| std::array::from_fn(|c| a[(r, c)]));
+        let mut lu = [[0.0; N]; N];
+        for (r, row) in lu.iter_mut().enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                *x = a[(r, c)];
+            }
+        }
         let mut row_of: [usize; N] = std::array::from_fn(|i| i);
         let mut col_of = row_of;
         let mut rank = 0;
+        // Index loops over constant bounds: the compiler unrolls them and drops the bounds checks.
+        #[allow(clippy::needless_range_loop)]
         for k in 0..N {
             let (mut pr, mut pc, mut best) = (k, k, 0.0);
-            for (r, row) in lu.iter().enumerate().skip(k) {
-                for (c, x) in row.iter().enumerate().skip(k) {
-                    if x.abs() > best {
-                        (pr, pc, best) = (r, c, x.abs());
+            for r in k..N {
+                for c in k..N {
+                    let x = lu[r][c].abs();
+                    if x > best {
+                        (pr, pc, best) = (r, c, x);
                     }
                 }
             }
             if best <= threshold {
                 break;
             }
-            lu.swap(k, pr);
-            row_of.swap(k, pr);
-            for row in lu.iter_mut() {
-                row.swap(k, pc);
+            if pr != k {
+                lu.swap(k, pr);
+                row_of.swap(k, pr);
             }
-            col_of.swap(k, pc);
+            if pc != k {
+                for row in lu.iter_mut() {
+                    row.swap(k, pc);
+                }
+                col_of.swap(k, pc);
+            }
             let pivot_row = lu[k];
-            for row in lu.iter_mut().skip(k + 1) {
-                let f = row[k] / pivot_row[k];
-                row[k] = f;
-                if f != 0.0 {
-                    for c in k + 1..N {
-                        row[c] -= f * pivot_row[c];
-                    }
+            for r in k + 1..N {
+                let f = lu[r][k] / pivot_row[k];
+                lu[r][k] = f;
+                for c in k + 1..N {
+                    lu[r][c] -= f * pivot_row[c];
                 }
             }
             rank += 1;
@@ -78,21 +88,29 @@ impl<const N: usize> Factorization<N> {
     }
 
     /// A solution of `a x = b` (unknowns beyond the rank set to 0).
+    #[allow(clippy::needless_range_loop)]
     pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
-        let mut y: [f64; N] = std::array::from_fn(|k| b[self.row_of[k]]);
-        for k in 0..self.rank {
+        let mut y = [0.0; N];
+        for k in 0..N {
+            y[k] = b[self.row_of[k]];
+        }
+        let rank = self.rank.min(N);
+        for k in 0..rank {
             let yk = y[k];
-            for (yr, row) in y.iter_mut().zip(&self.lu).skip(k + 1) {
-                *yr -= row[k] * yk;
+            for r in k + 1..N {
+                y[r] -= self.lu[r][k] * yk;
             }
         }
-        for k in (0..self.rank).rev() {
+        for k in (0..rank).rev() {
             let row = &self.lu[k];
-            let s: f64 = (k + 1..self.rank).fold(y[k], |s, c| s - row[c] * y[c]);
+            let mut s = y[k];
+            for c in k + 1..rank {
+                s -= row[c] * y[c];
+            }
             y[k] = s / row[k];
         }
         let mut x = SVector::<f64, N>::zeros();
-        for k in 0..self.rank {
+        for k in 0..rank {
             x[self.col_of[k]] = y[k];
         }
         x
