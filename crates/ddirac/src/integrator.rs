@@ -348,3 +348,25 @@ impl<const N: usize> Predictor<N> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The predictor reproduces polynomials of the degree it extrapolates with: constant after one
+    /// step, linear after two, quadratic from three on.
+    #[test]
+    fn predictor_is_exact_for_polynomials_of_its_degree() {
+        let polynomial = |degree: i32, k: f64| SVector::<f64, 2>::new(k.powi(degree) - 2.0 * k, 0.5 * k.powi(degree));
+        for (count, degree) in [(1, 0), (2, 1), (3, 2), (6, 2)] {
+            let mut predictor = Predictor::new(SVector::zeros());
+            for k in 0..count {
+                let z = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, k as f64) };
+                predictor.push(z);
+            }
+            let expected = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, count as f64) };
+            let error = (predictor.predict() - expected).amax();
+            assert!(error < 1e-12 * (1.0 + expected.amax()), "{count} steps, degree {degree}: error {error:e}");
+        }
+    }
+}
