@@ -159,11 +159,8 @@ fn work_precision(group: &Value) {
             );
         }
     }
-    // One scheme: their q_N (|q_N| ≈ 30) differ by round-off accumulated over N steps, so their errors
-    // differ by less than 1e-11 (measured: 7e-13 at N = 800, 2e-14 from N = 3200).
     for i in 0..rows.len() {
-        let difference = (engine[i] - specialised[i]).abs();
-        assert!(difference <= 1e-11, "N = {}: errors {} and {}", steps[i], engine[i], specialised[i]);
+        assert!((engine[i] - specialised[i]).abs() <= 1e-10 * engine[i], "N = {}", steps[i]);
     }
     // Paper, Table 1: ‖q(T) − q_N‖ = 0.06626 for N = 100.
     let n100 = steps.iter().position(|&n| n == 100.0).expect("a row for N = 100");

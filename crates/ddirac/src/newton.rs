@@ -9,9 +9,7 @@
 //! solve ([`KeptJacobian`]), as long as each correction reduces the residual by [`CONTRACTION`];
 //! otherwise it is re-evaluated where the correction started. Chord iterates converge linearly, so
 //! after the first iterate that passes the test one more correction brings it to round-off, as a
-//! classical step would; both stop on the same test. That polishing correction is computed from the
-//! residual already in hand and skipped when it is below round-off ([`ROUND_OFF`]), which saves
-//! one residual per solve whenever the predictor was good. A residual without its Jacobian costs a
+//! classical step would; both stop on the same test. A residual without its Jacobian costs a
 //! fraction of one with it (see `ad`), the more so the more coordinates.
 
 use nalgebra::{SMatrix, SVector};
@@ -54,10 +52,6 @@ pub const ACROSS_SOLVES: usize = 7;
 
 /// A reused Jacobian is replaced when a correction reduces ‖r‖∞ by less than this factor.
 pub const CONTRACTION: f64 = 0.25;
-
-/// The polishing correction is skipped when it is below `ROUND_OFF · ‖z‖∞`: applying it would move z by
-/// round-off only, and evaluating the residual there costs as much as the whole correction.
-pub const ROUND_OFF: f64 = 4.0 * f64::EPSILON;
 
 /// What the solver reports on success.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -272,8 +266,7 @@ fn chord<const N: usize>(
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);
     loop {
-        let passed = residual <= threshold || small_correction;
-        if passed {
+        if residual <= threshold || small_correction {
             // The first iterate to pass the test may be only just within it: after a reused Jacobian
             // (linear convergence), or after a fresh one from a good predictor when the correction
             // was not yet tiny. One more correction brings it to round-off, as the overshoot of a
@@ -289,10 +282,6 @@ fn chord<const N: usize>(
         }
         let delta =
             kept.as_ref().filter(|lu| lu.rank == N).map(|lu| lu.solve(&r)).filter(|d| d.iter().all(|x| x.is_finite()));
-        if passed && delta.is_some_and(|d| d.amax() <= ROUND_OFF * z.amax()) {
-            // The polish would move z by round-off only: z is as good as it gets.
-            return Ok(NewtonStats { iterations, residual, jacobians });
-        }
         let Some(delta) = delta else {
             if fresh {
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
@@ -339,29 +328,6 @@ mod tests {
         .unwrap();
         assert!((z[0] - 2f64.sqrt()).abs() < 1e-14 && (z[1] - 2f64.sqrt()).abs() < 1e-14);
         assert!(stats.iterations <= 6, "{stats:?}");
-    }
-
-    /// From a start whose Newton correction leaves z at round-off, the polish is skipped (one
-    /// correction); from a start that leaves z only within the tolerance, it is taken (two). Both end
-    /// at the root to round-off.
-    #[test]
-    fn the_polish_is_taken_only_when_it_changes_z() {
-        let run = |start: f64| {
-            let mut z = SVector::<f64, 1>::new(start);
-            let mut kept = KeptJacobian::new();
-            let options = NewtonOptions { tolerance: 1e-10, ..Default::default() };
-            let stats = solve_with(&mut z, 1.0, &options, &mut kept, |z, with_jacobian| {
-                let r = SVector::<f64, 1>::new(z[0] * z[0] - 2.0);
-                (r, with_jacobian.then(|| SMatrix::<f64, 1, 1>::new(2.0 * z[0])))
-            })
-            .unwrap();
-            assert!((z[0] - 2f64.sqrt()).abs() <= 4.0 * f64::EPSILON, "start {start}: z = {}", z[0]);
-            stats.iterations
-        };
-        // An error of 1e-9 becomes 3.5e-19 after one correction; 1e-6 becomes 3.5e-13 (within the
-        // tolerance, above round-off).
-        assert_eq!(run(2f64.sqrt() + 1e-9), 1);
-        assert_eq!(run(2f64.sqrt() + 1e-6), 2);
     }
 
     #[test]
