@@ -3,17 +3,17 @@
 //! translation (the hypothesis of reduction, paper §4), the connection axioms (Definition 2.1), the
 //! regularity of the Legendre transform and whether p0 lies on the primary constraint p = ∂L/∂v.
 //!
-//! The report goes to stdout. The exit status is 0 when a run of the spec's method would be
-//! accepted, and non-zero when it would be refused or could not be trusted: a reduced method with a
-//! Lagrangian that is not invariant (even with `check_invariance = false`), a reduced method without
-//! group coordinates, or a degenerate Lagrangian with a p0 off the primary constraint.
+//! The report goes to stdout. The verdict is the library's ([`ddirac::CheckReport::verdict`]), the
+//! one a run applies before its first step: the exit status is 0 exactly when a run of the spec's
+//! method would be accepted, and a refusal is the error the run would report. Warnings a run would
+//! carry (a reduction with `check_invariance = false` of an L_d that fails the check) are printed
+//! too.
 
 use std::path::PathBuf;
 
-use ddirac::{CheckReport, InitialMomentum, Role};
-use miette::LabeledSpan;
+use ddirac::{CheckReport, Finding, InitialMomentum, Role};
 
-use crate::diagnostics::{CliError, SpecError, SpecSource};
+use crate::diagnostics::CliError;
 use crate::run::{self, Loaded};
 use crate::spec::Plan;
 
@@ -28,95 +28,43 @@ pub struct CheckOptions {
 /// Checks a spec, prints the report, and fails when a run would be refused.
 pub fn check(options: &CheckOptions) -> Result<(), CliError> {
     let Loaded { source, plan, .. } = run::load(&options.spec, &options.set)?;
-    let report = plan.system.check(&plan.problem, &plan.method).map_err(|error| {
-        match plan.spans.diagnostic(&source, &error) {
-            Some(diagnostic) => CliError::Spec(diagnostic),
-            None => CliError::Integration(error),
+    let located = |error: ddirac::Error| match plan.spans.diagnostic(&source, &error) {
+        Some(diagnostic) => CliError::Spec(diagnostic),
+        None => CliError::Integration(error),
+    };
+    let report = plan.system.check(&plan.problem, &plan.method).map_err(located)?;
+    let verdict = report.verdict(&plan.method);
+    println!("{}", Findings.text(&plan, &report, &verdict));
+    match verdict {
+        Ok(warnings) => {
+            crate::report::print_warnings(&warnings);
+            Ok(())
         }
-    })?;
-    let findings = Findings::new(&plan, &report);
-    let refusal = findings.refusal(&source, &plan, &report);
-    println!("{}", findings.text(&plan, &report, refusal.is_some()));
-    match refusal {
-        Some(error) => Err(CliError::Spec(error)),
-        None => Ok(()),
+        Err(error) => Err(located(error)),
     }
 }
 
-/// What the report means for a run of the spec's method.
-struct Findings {
-    /// The first group coordinate under whose translation L_d changes, with its deviation.
-    not_invariant: Option<(String, f64)>,
-    /// p0 given as momenta, its largest entry.
-    p0_scale: Option<f64>,
-    /// Whether p0 satisfies the primary constraint.
-    consistent: bool,
+/// The printed report.
+struct Findings;
+
+/// One line of a hypothesis tested per coordinate.
+fn finding_line(heading: &str, f: &Finding, tolerance: f64, holds: &str, fails: &str) -> String {
+    let verdict = if f.holds(tolerance) {
+        holds.to_owned()
+    } else if f.decided() {
+        fails.to_owned()
+    } else {
+        format!("UNDECIDED: L_d is finite at only {} pairs near the initial data", f.samples)
+    };
+    format!(
+        "  {heading:<16}  {}: deviation {:.2e} (tolerance {tolerance:.0e}, {} samples): {verdict}",
+        f.coordinate, f.deviation, f.samples
+    )
 }
 
 impl Findings {
-    fn new(plan: &Plan, report: &CheckReport) -> Self {
-        let not_invariant =
-            report.invariance.iter().find(|(_, d)| *d > report.invariance_tolerance).map(|(n, d)| (n.clone(), *d));
-        let p0_scale = match &plan.problem.initial {
-            InitialMomentum::Momentum(p) => Some(p.iter().fold(0.0f64, |m, v| m.max(v.abs()))),
-            InitialMomentum::Velocity(_) => None,
-        };
-        let consistent = match p0_scale {
-            Some(scale) => report.momentum_consistent(scale),
-            None => true,
-        };
-        Self { not_invariant, p0_scale, consistent }
-    }
-
-    /// Why a run would be refused, as a diagnostic pointing at the spec values concerned.
-    fn refusal(&self, source: &SpecSource, plan: &Plan, report: &CheckReport) -> Option<Box<SpecError>> {
-        let reduced = plan.method.reduced;
-        if reduced && report.invariance.is_empty() {
-            return plan.spans.diagnostic(source, &ddirac::Error::NoSymmetry).or_else(|| {
-                Some(source.error(None, "a run would be refused: reduction needs at least one group coordinate", ""))
-            });
-        }
-        if let (true, Some((coordinate, deviation))) = (reduced, &self.not_invariant) {
-            let error = ddirac::Error::NotInvariant {
-                coordinate: coordinate.clone(),
-                deviation: *deviation,
-                tolerance: report.invariance_tolerance,
-            };
-            return Some(plan.spans.diagnostic(source, &error).unwrap_or_else(|| {
-                source
-                    .error(None, format!("a run would be refused: {error}"), "")
-                    .with_help("run the unreduced equations (`reduced = false`); reduction needs an invariant L_d")
-            }));
-        }
-        if !report.regular() && !self.consistent {
-            let labels = plan
-                .spans
-                .momentum
-                .clone()
-                .map(|span| LabeledSpan::new_with_span(Some("off the primary constraint".into()), span))
-                .into_iter()
-                .collect();
-            return Some(
-                source
-                    .error_with(
-                        format!(
-                            "the Lagrangian is degenerate (rank {} of {}) and p0 does not satisfy the primary \
-                             constraint p = ∂L/∂v(q0, v): mismatch {:.3e}",
-                            report.legendre_rank, report.coordinates, report.constraint_mismatch
-                        ),
-                        labels,
-                    )
-                    .with_help(
-                        "for a degenerate Lagrangian p0 is fixed by q0 where L is linear in the velocities: give \
-                         p0 = ∂L/∂v(q0, v0), or give the velocities `v` instead of `p`",
-                    ),
-            );
-        }
-        None
-    }
-
     /// The report printed on stdout.
-    fn text(&self, plan: &Plan, report: &CheckReport, refused: bool) -> String {
+    fn text(&self, plan: &Plan, report: &CheckReport, verdict: &Result<Vec<ddirac::Warning>, ddirac::Error>) -> String {
         let coordinates = plan.system.coordinates();
         let listed: Vec<String> = coordinates
             .iter()
@@ -135,17 +83,19 @@ impl Findings {
         if report.invariance.is_empty() {
             lines.push("  invariance        no group coordinates: nothing to reduce".into());
         }
-        for (i, (name, deviation)) in report.invariance.iter().enumerate() {
-            let verdict = if *deviation <= report.invariance_tolerance {
-                "invariant"
-            } else {
-                "NOT invariant: reduction refused"
-            };
-            lines.push(format!(
-                "  {:<16}  {name}: deviation {deviation:.2e} (tolerance {:.0e}): {verdict}",
-                if i == 0 { "invariance" } else { "" },
-                report.invariance_tolerance
-            ));
+        let not_invariant = match (m.reduced, m.check_invariance) {
+            (true, true) => "NOT invariant: reduction refused",
+            (true, false) => "NOT invariant: reduced anyway (check_invariance = false), with a warning",
+            (false, _) => "NOT invariant: the unreduced equations do not need it",
+        };
+        for (i, f) in report.invariance.iter().enumerate() {
+            let heading = if i == 0 { "invariance" } else { "" };
+            lines.push(finding_line(heading, f, report.invariance_tolerance, "invariant", not_invariant));
+        }
+        for (i, f) in report.periodicity.iter().enumerate() {
+            let heading = if i == 0 { "angles" } else { "" };
+            let fails = "NOT 2π-periodic: the chart may not wrap it";
+            lines.push(finding_line(heading, f, report.periodicity_tolerance, "2π-periodic", fails));
         }
         let n_g = report.invariance.len();
         let n_x = coordinates.len() - n_g;
@@ -157,24 +107,25 @@ impl Findings {
             "  Legendre          {legendre} (rank {} of {}) at (q0, v0)",
             report.legendre_rank, report.coordinates
         ));
-        let momentum = match self.p0_scale {
-            None => "given as a velocity: p0 = ∂L/∂v(q0, v0) lies on the primary constraint".to_owned(),
-            Some(_) if self.consistent => format!(
+        let momentum = match &plan.problem.initial {
+            InitialMomentum::Velocity(_) => {
+                "given as a velocity: p0 = ∂L/∂v(q0, v0) lies on the primary constraint".to_owned()
+            }
+            InitialMomentum::Momentum(_) if report.momentum_consistent() => format!(
                 "consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})",
                 report.constraint_mismatch
             ),
-            Some(_) => format!(
+            InitialMomentum::Momentum(_) => format!(
                 "NOT consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})",
                 report.constraint_mismatch
             ),
         };
         lines.push(format!("  initial momentum  {momentum}"));
-        let verdict = if refused {
-            "a run would be refused"
-        } else if m.reduced {
-            "a run would be accepted (reduced equations)"
-        } else {
-            "a run would be accepted (unreduced equations)"
+        let equations = if m.reduced { "reduced equations" } else { "unreduced equations" };
+        let verdict = match verdict {
+            Err(_) => "a run would be refused".to_owned(),
+            Ok(w) if w.is_empty() => format!("a run would be accepted ({equations})"),
+            Ok(w) => format!("a run would be accepted ({equations}) with {} warning(s)", w.len()),
         };
         lines.push(format!("  verdict           {verdict}"));
         lines.join("\n")

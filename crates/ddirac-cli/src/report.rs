@@ -31,6 +31,31 @@ pub struct SummaryJson<'a> {
     wall_seconds: f64,
     total_wall_seconds: f64,
     reference_error: Option<f64>,
+    warnings: Vec<WarningJson>,
+}
+
+/// One warning: `{kind, step, t, message, count}` (`step` and `t` are `null` for a finding before
+/// the first step).
+#[derive(Serialize)]
+pub struct WarningJson {
+    kind: &'static str,
+    step: Option<usize>,
+    t: Option<f64>,
+    message: String,
+    count: usize,
+}
+
+impl WarningJson {
+    fn new(w: &ddirac::Warning) -> Self {
+        Self { kind: w.kind.name(), step: w.step, t: w.t, message: w.message.clone(), count: w.count }
+    }
+}
+
+/// Prints each warning of a run once on stderr.
+pub fn print_warnings(warnings: &[ddirac::Warning]) {
+    for w in warnings {
+        eprintln!("warning [{}]: {w}", w.kind.name());
+    }
 }
 
 /// Parameters as a JSON object `{name: value}`, in the system's order.
@@ -52,6 +77,8 @@ struct MethodJson {
     max_iterations: usize,
     check_invariance: bool,
     derivatives: &'static str,
+    on_energy_jump: &'static str,
+    energy_jump_threshold: f64,
 }
 
 #[derive(Serialize)]
@@ -127,6 +154,8 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             max_iterations: method.newton.max_iterations,
             check_invariance: method.check_invariance,
             derivatives: method.differentiation.name(),
+            on_energy_jump: method.energy_jump.action.name(),
+            energy_jump_threshold: method.energy_jump.threshold,
         },
         steps: summary.steps,
         step: summary.step,
@@ -151,6 +180,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         wall_seconds: summary.wall_seconds,
         total_wall_seconds: total_seconds,
         reference_error: summary.reference_error,
+        warnings: summary.warnings.iter().map(WarningJson::new).collect(),
     }
 }
 
@@ -195,6 +225,7 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
         ),
         format!("  derivatives      {}", summary.derivatives),
         format!("  reference error  {reference}"),
+        warnings(&summary.warnings),
         format!("  output           {}", dir.display()),
         format!("  wall time        {:.3} s ({:.3} s integrating)", total_seconds, summary.wall_seconds),
     ]
@@ -207,4 +238,13 @@ fn momentum_map(j: &ddirac::diagnostics::MomentumMapDrift) -> String {
         Some(relative) => format!("  momentum map     drift {:.3e} (relative {relative:.3e})", j.max_drift),
         None => format!("  momentum map     drift {:.3e} (J_0 = 0)", j.max_drift),
     }
+}
+
+/// The warnings line: their number and kinds (each is printed in full on stderr).
+fn warnings(warnings: &[ddirac::Warning]) -> String {
+    if warnings.is_empty() {
+        return "  warnings         none".into();
+    }
+    let kinds: Vec<&str> = warnings.iter().map(|w| w.kind.name()).collect();
+    format!("  warnings         {} ({}; see stderr and summary.json)", warnings.len(), kinds.join(", "))
 }

@@ -113,6 +113,7 @@ pub fn write_run(
             Ok(trajectory.write(row)?)
         })
         .map_err(|e| library_error(source, plan, dir, e))?;
+    report::print_warnings(&summary.warnings);
     let mut staged = trajectory.finish().map_err(io)?;
     let total = started.elapsed().as_secs_f64();
     let json = report::summary_json(plan, &summary, spec, total);

@@ -132,6 +132,84 @@ impl std::fmt::Display for DerivativePath {
     }
 }
 
+/// What a warning is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum WarningKind {
+    /// A reduced run with `check_invariance` off, of an L_d that fails the invariance check.
+    NotInvariant,
+    /// A reduced run with `check_invariance` off, of an L_d whose invariance could not be tested.
+    InvarianceUndecided,
+    /// A step whose energy changed far more than the run's typical step-to-step change: a singularity
+    /// of the Lagrangian crossed, or Newton's method converged to another root.
+    EnergyJump,
+    /// The closed-form step failed its residual test and the step was solved by Newton's method.
+    NewtonFallback,
+}
+
+impl WarningKind {
+    /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
+    /// `newton_fallback`.
+    pub fn name(self) -> &'static str {
+        match self {
+            WarningKind::NotInvariant => "not_invariant",
+            WarningKind::InvarianceUndecided => "invariance_undecided",
+            WarningKind::EnergyJump => "energy_jump",
+            WarningKind::NewtonFallback => "newton_fallback",
+        }
+    }
+}
+
+/// Something a user should know about a run that still completed. Repeated events of one kind make
+/// one warning: the first event's step and message, and how many there were.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    /// What it is about.
+    pub kind: WarningKind,
+    /// The step k of the first event (`None` for a finding before the first step).
+    pub step: Option<usize>,
+    /// The time t_k of the first event.
+    pub t: Option<f64>,
+    /// What happened and what it means.
+    pub message: String,
+    /// How many events of this kind the run had (1 for a finding before the first step).
+    pub count: usize,
+}
+
+impl Warning {
+    /// A warning about step `at = Some((k, t_k))`, or about the run before its first step.
+    pub fn new(kind: WarningKind, at: Option<(usize, f64)>, message: String) -> Self {
+        Self { kind, step: at.map(|(k, _)| k), t: at.map(|(_, t)| t), message, count: 1 }
+    }
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let (Some(k), Some(t)) = (self.step, self.t) {
+            write!(f, "step {k} (t = {}): ", crate::error::Time(t))?;
+        }
+        f.write_str(&self.message)?;
+        if self.count > 1 {
+            write!(f, " ({} steps in all; the first is reported)", self.count)?;
+        }
+        Ok(())
+    }
+}
+
+/// Collects a run's warnings, one per kind.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Warnings(pub Vec<Warning>);
+
+impl Warnings {
+    /// Records an event: a new warning, or one more count of the kind's first.
+    pub fn push(&mut self, warning: Warning) {
+        match self.0.iter_mut().find(|w| w.kind == warning.kind) {
+            Some(first) => first.count += 1,
+            None => self.0.push(warning),
+        }
+    }
+}
+
 /// What a run reports at its end.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
@@ -159,6 +237,8 @@ pub struct Summary {
     pub wall_seconds: f64,
     /// ‖q(T) − q_N‖ on the coordinates the exact solution gives, when the system has one.
     pub reference_error: Option<f64>,
+    /// What the user should know about the run (see [`Warning`]), in the order first seen.
+    pub warnings: Vec<Warning>,
 }
 
 /// A trajectory kept in memory: the reported rows and the summary.

@@ -11,10 +11,13 @@ use std::time::Instant;
 use nalgebra::SVector;
 
 use crate::chart::Configuration;
-use crate::diagnostics::{Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Solution, Summary};
+use crate::diagnostics::{
+    Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Solution, Summary, Warning, WarningKind,
+    Warnings,
+};
+use crate::energy_jump::{Jump, JumpAction, Monitor};
 use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
-use crate::reduction::invariance::check_invariance;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Scheme, StepDerivatives, StepEquations};
@@ -54,20 +57,15 @@ pub fn integrate<S: System<N>, const N: usize>(
         return Err(Error::Invalid { what: "output.every".into(), why: "must be at least 1".into() });
     }
     let setup = Setup::new(system, problem, method)?;
+    let warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
     let ld = DiscreteLagrangian::new(system, method.rule, problem.step);
     let run = Run { system, problem, output, setup: &setup };
     if method.reduced {
-        if setup.split.n_g() == 0 {
-            return Err(Error::NoSymmetry);
-        }
-        if method.check_invariance {
-            check_invariance(&ld, &setup.split, &setup.q0, &setup.dq0)?;
-        }
         let reduction = ReducedLagrangian::new(system, method.rule, problem.step, setup.connection.clone())?;
         let scheme = LagrangePoincareDirac::new(reduction, method.variant);
-        run.go(&scheme, method, observer)
+        run.go(&scheme, method, warnings, observer)
     } else {
-        run.go(&LagrangeDirac { ld }, method, observer)
+        run.go(&LagrangeDirac { ld }, method, warnings, observer)
     }
 }
 
@@ -149,8 +147,12 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         &self,
         scheme: &impl Scheme<N>,
         method: &Method,
+        warnings: Vec<Warning>,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
+        let mut warnings = Warnings(warnings);
+        let mut monitor = Monitor::new(method.energy_jump);
+        let mut p_now = self.setup.p0;
         let started = Instant::now();
         let (h, steps, split) = (self.problem.step, self.problem.steps, &self.setup.split);
         let coordinates = self.system.coordinates();
@@ -209,8 +211,11 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 break;
             }
 
+            if crate::interrupt::requested() {
+                return Err(Error::Interrupted { step: k, t });
+            }
             let base = scheme.base(config.base());
-            let Solved { z, momenta_next, discrete_energy: step_energy, stats } = self
+            let Solved { z, momenta_next, discrete_energy: step_energy, stats, fell_back } = self
                 .solve_step(scheme, &equations, &derivatives, &base, &momenta, &predictor, &mut kept, &method.newton)
                 .map_err(|f| Error::Newton {
                     step: k,
@@ -224,6 +229,17 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
                 return Err(Error::Diverged { step: k, t, what: "state" });
             }
             discrete_energy.push(step_energy);
+            if fell_back {
+                let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
+                warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
+            }
+            if method.energy_jump.action != JumpAction::Ignore {
+                let p_next = scheme.p_from_momenta(&momenta_next);
+                let pv = p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
+                p_now = p_next;
+                let jump = monitor.push((k, t), pv - step_energy / h, pv.abs());
+                jumped(jump, method.energy_jump.action, &mut warnings)?;
+            }
             newton_summary.total_iterations += stats.iterations;
             newton_summary.total_jacobians += stats.jacobians;
             newton_summary.max_iterations = newton_summary.max_iterations.max(stats.iterations);
@@ -244,6 +260,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             predictor.push(z);
         }
 
+        jumped(monitor.finish(), method.energy_jump.action, &mut warnings)?;
         let final_q = config.output(self.output.wrap_angles).to_vec();
         let final_p = scheme.p_from_momenta(&momenta).to_vec();
         let reference_error =
@@ -271,6 +288,7 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             derivatives: derivative_path,
             wall_seconds: started.elapsed().as_secs_f64(),
             reference_error,
+            warnings: warnings.0,
         })
     }
 
@@ -294,7 +312,8 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
         if let Some(s) = closed_form {
             if let Some(residual) = s.solves(options.threshold(scale)) {
                 let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
-                return Ok(Solved { z: s.z.into(), momenta_next: s.momenta_next, discrete_energy: s.value, stats });
+                let (z, momenta_next, discrete_energy) = (s.z.into(), s.momenta_next, s.value);
+                return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
             }
         }
         let mut z = match closed_form {
@@ -309,7 +328,23 @@ impl<S: System<N>, const N: usize> Run<'_, S, N> {
             (e.residual, e.jacobian)
         })?;
         let last = last.expect("Newton evaluates at least once");
-        Ok(Solved { z, momenta_next: last.momenta_next, discrete_energy: last.discrete_energy, stats })
+        let (momenta_next, discrete_energy) = (last.momenta_next, last.discrete_energy);
+        Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: closed_form.is_some() })
+    }
+}
+
+/// A jump of the energy as the method asks: an error, or a warning.
+fn jumped(jump: Option<Jump>, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
+    match jump {
+        Some(jump) if action == JumpAction::Fail => {
+            let (step, t) = jump.at;
+            Err(Error::EnergyJump { step, t, message: jump.describe() })
+        }
+        Some(jump) => {
+            warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
+            Ok(())
+        }
+        None => Ok(()),
     }
 }
 
@@ -319,6 +354,8 @@ struct Solved<const N: usize> {
     momenta_next: [f64; N],
     discrete_energy: f64,
     stats: newton::NewtonStats,
+    /// Whether the closed-form step failed its test and Newton's method solved the step.
+    fell_back: bool,
 }
 
 /// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated

@@ -2,7 +2,7 @@
 //! connection, Newton options): the two things that, joined with a [`System`](crate::System), make
 //! an integration.
 
-use crate::{Error, NewtonOptions, Rule};
+use crate::{EnergyJump, Error, NewtonOptions, Rule};
 
 /// How the initial momentum is given.
 #[derive(Debug, Clone, PartialEq)]
@@ -150,6 +150,8 @@ pub struct Method {
     pub check_invariance: bool,
     /// Compiled derivatives or dual numbers.
     pub differentiation: Differentiation,
+    /// The watch on jumps of the energy between steps ([`EnergyJump`]).
+    pub energy_jump: EnergyJump,
 }
 
 impl Default for Method {
@@ -162,6 +164,7 @@ impl Default for Method {
             newton: NewtonOptions::default(),
             check_invariance: true,
             differentiation: Differentiation::Auto,
+            energy_jump: EnergyJump::default(),
         }
     }
 }

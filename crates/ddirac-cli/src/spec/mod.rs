@@ -10,7 +10,7 @@
 //! [parameters]  m = 1.0                       # overrides of the defaults, or the constants of L
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
 //!               tolerance = 1e-12  max_iterations = 50  jacobian = "reuse"  check_invariance = true
-//!               derivatives = "auto"
+//!               derivatives = "auto"  on_energy_jump = "warn"  energy_jump_threshold = 1e-3
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
@@ -140,6 +140,10 @@ pub struct MethodSpec {
     pub check_invariance: Option<Spanned<bool>>,
     /// `auto` (default: compiled when possible), `compiled` (required) or `dual` (dual numbers).
     pub derivatives: Option<Spanned<String>>,
+    /// What a jump of the energy between steps does: `warn` (default), `error` or `ignore`.
+    pub on_energy_jump: Option<Spanned<String>>,
+    /// Smallest change of the energy in one step, relative to its scale, that may count as a jump.
+    pub energy_jump_threshold: Option<Number>,
 }
 
 /// `[time]`: any two of step, steps, duration (all three if consistent).

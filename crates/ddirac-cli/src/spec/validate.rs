@@ -5,7 +5,8 @@ use std::ops::Range;
 
 use ddirac::systems::BuiltIn;
 use ddirac::{
-    Coordinate, Differentiation, DynSystem, Method, NewtonOptions, OutputOptions, Problem, Role, Rule, Variant,
+    Coordinate, Differentiation, DynSystem, EnergyJump, JumpAction, Method, NewtonOptions, OutputOptions, Problem,
+    Role, Rule, Variant,
 };
 use miette::LabeledSpan;
 use toml::Spanned;
@@ -54,6 +55,12 @@ pub struct Spans {
     pub system: Option<Range<usize>>,
     /// The declaration of each group coordinate in `system.group`, by name (`[system]` tables only).
     pub group: Vec<(String, Range<usize>)>,
+    /// Each entry of `system.angles`, by name (`[system]` tables only).
+    pub angles: Vec<(String, Range<usize>)>,
+    /// `method.tolerance`.
+    pub tolerance: Option<Range<usize>>,
+    /// `method.on_energy_jump`.
+    pub energy_jump: Option<Range<usize>>,
     /// Whether the system is a built-in one (named) rather than a `[system]` table.
     pub built_in: bool,
 }
@@ -64,7 +71,13 @@ impl Spans {
         use ddirac::Error as E;
         let what = match error {
             E::Size { what, .. } | E::NonFinite { what, .. } | E::Invalid { what, .. } => what.as_str(),
-            E::NotInvariant { .. } | E::NoSymmetry => return self.reduced.clone().map(|s| (s, "reduction asked here")),
+            E::NotInvariant { .. } | E::NoSymmetry | E::Undecided { .. } => {
+                return self.reduced.clone().map(|s| (s, "reduction asked here"))
+            }
+            E::OffPrimaryConstraint { .. } => return self.momentum.clone().map(|s| (s, "off the primary constraint")),
+            E::Newton { .. } | E::Diverged { .. } | E::EnergyJump { .. } => {
+                return self.time.clone().map(|s| (s, "this time grid"))
+            }
             _ => return None,
         };
         if let Some((_, span)) = self.parameters.iter().find(|(n, _)| what.contains(&format!("`{n}`"))) {
@@ -105,6 +118,39 @@ impl Spans {
                      (relative tolerance {tolerance:.0e}); run the unreduced equations (`reduced = false`), or \
                      choose group coordinates that the Lagrangian does not depend on"
                 ))
+            }
+            ddirac::Error::NotPeriodic { coordinate, .. } => {
+                if let Some((_, span)) = self.angles.iter().find(|(n, _)| n == coordinate) {
+                    let label = format!("L is not 2π-periodic in `{coordinate}`");
+                    labels.push(LabeledSpan::new_with_span(Some(label), span.clone()));
+                }
+                Some(format!(
+                    "the chart of an angle wraps it to (−π, π], which changes the motion unless L(q + 2π e, v) = \
+                     L(q, v); remove `{coordinate}` from `angles` if it is not an angle on the circle"
+                ))
+            }
+            ddirac::Error::Undecided { .. } => Some(
+                "L_d is not finite near the initial data, so the hypothesis could not be tested: check the initial \
+                 data and where the Lagrangian is defined; `check_invariance = false` reduces anyway, with a warning"
+                    .into(),
+            ),
+            ddirac::Error::OffPrimaryConstraint { .. } => Some(
+                "for a degenerate Lagrangian p0 is fixed by q0 where L is linear in the velocities: give p0 = \
+                 ∂L/∂v(q0, v0), or give the velocities `v` instead of `p`"
+                    .into(),
+            ),
+            ddirac::Error::Newton { .. } | ddirac::Error::Diverged { .. } | ddirac::Error::EnergyJump { .. } => {
+                if let Some(span) = self.tolerance.clone() {
+                    labels.push(LabeledSpan::new_with_span(Some("Newton tolerance".into()), span));
+                }
+                if let (ddirac::Error::EnergyJump { .. }, Some(span)) = (error, self.energy_jump.clone()) {
+                    labels.push(LabeledSpan::new_with_span(Some("a jump is an error here".into()), span));
+                }
+                Some(
+                    "a smaller step (`time.step`, or more `time.steps`) resolves the motion better; near a \
+                     singularity of the coordinates or of the Lagrangian no step may suffice"
+                        .into(),
+                )
             }
             ddirac::Error::NoSymmetry => {
                 if let Some(span) = self.system.clone().filter(|_| labels.is_empty()) {
@@ -149,6 +195,11 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
         }
         SystemRef::Expression(table) => {
             let built = expression::build(source, spec, table, spec.system.span())?;
+            spans.angles = table
+                .angles
+                .as_ref()
+                .map(|list| list.get_ref().iter().map(|a| (a.get_ref().clone(), a.span())).collect())
+                .unwrap_or_default();
             let coordinates = built.system.coordinates();
             spans.group = built
                 .coordinates
@@ -306,7 +357,31 @@ fn method(
         })?,
         None => defaults.differentiation,
     };
+    let action = match &m.on_energy_jump {
+        Some(a) => JumpAction::from_name(a.get_ref()).ok_or_else(|| {
+            source
+                .error(Some(a.span()), format!("unknown action `{}`", a.get_ref()), "not an action")
+                .with_help("`method.on_energy_jump` is `warn` (default), `error` or `ignore`")
+        })?,
+        None => defaults.energy_jump.action,
+    };
+    let threshold = match &m.energy_jump_threshold {
+        Some(t) => {
+            let v = finite(source, t, "`method.energy_jump_threshold`")?;
+            if v <= 0.0 {
+                return Err(source.error(
+                    Some(t.span()),
+                    "`method.energy_jump_threshold` must be positive",
+                    format!("{v}"),
+                ));
+            }
+            v
+        }
+        None => defaults.energy_jump.threshold,
+    };
     spans.reduced = m.reduced.as_ref().map(|r| r.span());
+    spans.tolerance = m.tolerance.as_ref().map(|t| t.span());
+    spans.energy_jump = m.on_energy_jump.as_ref().map(|a| a.span());
     spans.connection = m.connection.as_ref().map(|c| c.span());
     let connection = m.connection.as_ref().map(|k| connection(source, k, coordinates)).transpose()?;
     Ok(Method {
@@ -317,6 +392,7 @@ fn method(
         newton: NewtonOptions { tolerance, max_iterations, reuse_jacobian },
         check_invariance: !matches!(&m.check_invariance, Some(c) if !*c.get_ref()),
         differentiation,
+        energy_jump: EnergyJump { threshold, action },
     })
 }
 

@@ -1,0 +1,194 @@
+//! A watch on the energy of each step: a step whose energy changes far more than the run's typical
+//! step-to-step change has crossed a singularity of the Lagrangian (a `1/x` potential stepped over)
+//! or Newton's method converged to another root. The integrators conserve a modified energy, so on a
+//! smooth trajectory the energy of consecutive steps changes smoothly and by little; a jump is the
+//! mark of a result that cannot be trusted.
+//!
+//! The energy of step k is E_k = ⟨(p_k + p_{k+1})/2, (q_{k+1} − q_k)/h⟩ − L_d(q_k, q_{k+1})/h, the
+//! discrete counterpart of H = ⟨p, v⟩ − L at the middle of the step (the generalized energies of the
+//! paper's eqs. `Ed`, `Edminus` averaged and divided by h), from quantities every step has anyway; it
+//! follows H to O(h²), also through the transient errors near a pole of spherical coordinates. An excursion starts at step k when
+//!
+//! |E_k − E_{k−1}| > `threshold` · scale  and  |E_k − E_{k−1}| > 100 · typical,
+//!
+//! where scale is the largest of |E| and |⟨p, Δq/h⟩| seen before, and typical the running mean of
+//! the earlier steps' changes (an excursion is not folded into it); over the first 3 steps, before
+//! the mean means anything, a change must exceed max(0.5, 100 · `threshold`) · scale. The excursion
+//! is a *spike* and ends as soon as the energy is back within `threshold` · scale of its level
+//! before it (the transient error of passing close to a pole of spherical coordinates, say). It is a
+//! *jump* when the energy stays away and the changes are calm again (within 10 · typical, or
+//! `threshold` · scale / 10) for as many steps in a row as the excursion took to calm down, and at
+//! least 8 — a new level, as after a singular potential stepped over or a wrong Newton root — or
+//! when the run ends while it is still away.
+
+/// What a run does when a step's energy jumps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum JumpAction {
+    /// Go on, with a warning in the summary.
+    #[default]
+    Warn,
+    /// Fail with [`crate::Error::EnergyJump`].
+    Fail,
+    /// Do not watch.
+    Ignore,
+}
+
+impl JumpAction {
+    /// All actions, in spec order.
+    pub const ALL: [JumpAction; 3] = [JumpAction::Warn, JumpAction::Fail, JumpAction::Ignore];
+
+    /// The name in specs: `warn`, `error` or `ignore`.
+    pub fn name(self) -> &'static str {
+        match self {
+            JumpAction::Warn => "warn",
+            JumpAction::Fail => "error",
+            JumpAction::Ignore => "ignore",
+        }
+    }
+
+    /// Parses a name.
+    ///
+    /// ```
+    /// use ddirac::JumpAction;
+    /// assert_eq!(JumpAction::from_name("error"), Some(JumpAction::Fail));
+    /// assert_eq!(JumpAction::from_name("panic"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.name() == name)
+    }
+}
+
+/// The energy watch of a method.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyJump {
+    /// Smallest change, relative to the energy scale, that may count as a jump (default 1e-3).
+    pub threshold: f64,
+    /// What to do on a jump.
+    pub action: JumpAction,
+}
+
+impl Default for EnergyJump {
+    fn default() -> Self {
+        Self { threshold: 1e-3, action: JumpAction::Warn }
+    }
+}
+
+/// Steps over which the first changes are averaged before the ratio test applies.
+const WARM_UP: usize = 3;
+/// How many times the typical change starts an excursion.
+const RATIO: f64 = 100.0;
+/// Calm steps in a row that end an excursion.
+const CALM_STEPS: usize = 8;
+
+/// A jump found by [`Monitor::push`] or [`Monitor::finish`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jump {
+    /// The step k where the excursion started, and t_k.
+    pub at: (usize, f64),
+    /// The energy before the excursion.
+    pub before: f64,
+    /// The energy after it (at the run's end when it never calmed down).
+    pub after: f64,
+    /// The typical step-to-step change before it (`None` during the warm-up).
+    pub typical: Option<f64>,
+}
+
+impl Jump {
+    /// The sentence a warning or an error says.
+    pub fn describe(&self) -> String {
+        let change = (self.after - self.before).abs();
+        let against = match self.typical {
+            Some(t) if t > 0.0 => format!("{:.1e} times the typical step-to-step change {t:.2e}", change / t),
+            _ => "in the first steps".into(),
+        };
+        format!(
+            "the energy jumped from {:.6e} to {:.6e} ({against}) and did not come back: a singularity of the \
+             Lagrangian was crossed or Newton's method converged to another root; the trajectory after it \
+             cannot be trusted (try a smaller step)",
+            self.before, self.after
+        )
+    }
+}
+
+/// An excursion under way: where it started, the level before it, its length in steps and its
+/// last run of calm steps.
+#[derive(Debug, Clone, Copy)]
+struct Excursion {
+    at: (usize, f64),
+    level: f64,
+    steps: usize,
+    calm: usize,
+}
+
+/// The watch over a run's steps.
+#[derive(Debug, Clone)]
+pub(crate) struct Monitor {
+    options: EnergyJump,
+    previous: Option<f64>,
+    scale: f64,
+    sum: f64,
+    count: usize,
+    excursion: Option<Excursion>,
+}
+
+impl Monitor {
+    pub fn new(options: EnergyJump) -> Self {
+        Self { options, previous: None, scale: 0.0, sum: 0.0, count: 0, excursion: None }
+    }
+
+    fn typical(&self) -> f64 {
+        self.sum / self.count.max(1) as f64
+    }
+
+    /// Takes step k's energy `energy` (at `at` = (k, t_k)) and the size |⟨p, Δq/h⟩| of its kinetic
+    /// part; returns a jump when an excursion ends away from its level.
+    pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64) -> Option<Jump> {
+        let Some(before) = self.previous.replace(energy) else {
+            self.scale = energy.abs().max(kinetic);
+            return None;
+        };
+        let change = (energy - before).abs();
+        let (typical, threshold) = (self.typical(), self.options.threshold * self.scale);
+        if let Some(excursion) = &mut self.excursion {
+            if (energy - excursion.level).abs() <= threshold {
+                self.excursion = None;
+                return None;
+            }
+            excursion.steps += 1;
+            let calm = change <= (10.0 * typical).max(0.1 * threshold);
+            excursion.calm = if calm { excursion.calm + 1 } else { 0 };
+            if excursion.calm < CALM_STEPS.max(excursion.steps - excursion.calm) {
+                return None;
+            }
+            let excursion = self.excursion.take().expect("under way");
+            return Some(self.jump(excursion, energy));
+        }
+        let starts = if self.count < WARM_UP {
+            change > (0.5f64).max(RATIO * self.options.threshold) * self.scale
+        } else {
+            change > threshold && change > RATIO * typical
+        };
+        if starts || !change.is_finite() {
+            self.excursion = Some(Excursion { at, level: before, steps: 0, calm: 0 });
+        } else {
+            self.sum += change;
+            self.count += 1;
+            self.scale = self.scale.max(energy.abs()).max(kinetic);
+        }
+        None
+    }
+
+    /// The jump of an excursion still under way when the run ends, if the energy is then away
+    /// from its level.
+    pub fn finish(&mut self) -> Option<Jump> {
+        let excursion = self.excursion.take()?;
+        let last = self.previous?;
+        let jumped = !((last - excursion.level).abs() <= self.options.threshold * self.scale);
+        jumped.then(|| self.jump(excursion, last))
+    }
+
+    fn jump(&self, excursion: Excursion, after: f64) -> Jump {
+        let typical = (self.count >= WARM_UP).then(|| self.typical());
+        Jump { at: excursion.at, before: excursion.level, after, typical }
+    }
+}
