@@ -33,11 +33,16 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
         output::Formats::choose(&options.format, spec.output.format.as_ref(), &source).map_err(CliError::from)?;
     let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
     let created = !dir.exists();
+    // What the spec itself asks for: a failure of the run it does not ask for must not be labelled
+    // as asked for in the spec (`reduced = false` is not "reduction asked here").
+    let asked = plan.method.reduced;
+    let reduced_span = plan.spans.reduced.take();
     let steps = plan.problem.steps as u64;
     let mut progress = Progress::new(2 * steps, options.quiet);
     let mut walls = vec![];
     for (i, name) in RUNS.into_iter().enumerate() {
         plan.method.reduced = i == 0;
+        plan.spans.reduced = if plan.method.reduced == asked { reduced_span.clone() } else { None };
         progress.stage(i as u64 * steps, name);
         let result =
             run::write_run(&source, &plan, &options.spec, &dir.join(name), formats, Instant::now(), &mut progress);
@@ -49,7 +54,7 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
                     let _ = std::fs::remove_dir(dir.join(name));
                     let _ = std::fs::remove_dir(&dir);
                 }
-                return Err(miette::Report::new(error).wrap_err(format!("the {name} run failed")));
+                return Err(miette::Report::new(error).wrap_err(failed(name, asked, reduced_span.is_some())));
             }
         }
     }
@@ -67,6 +72,20 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
         println!("{}", report(&differences.summary, &dir, &walls, &differences, figures));
     }
     Ok(())
+}
+
+/// What a failed run was: the one the spec asks for, or the other one `--compare` adds.
+fn failed(name: &str, asked: bool, written: bool) -> String {
+    let own = if asked { RUNS[0] } else { RUNS[1] };
+    if name == own {
+        return format!("the {name} run failed");
+    }
+    let says = match (asked, written) {
+        (true, _) => "`reduced = true`",
+        (false, true) => "`reduced = false`",
+        (false, false) => "the unreduced equations (`reduced` is not set)",
+    };
+    format!("the {name} run failed: the spec asks for {says}, and --compare runs the {name} equations as well")
 }
 
 /// The largest differences and the figure of them.
@@ -153,7 +172,11 @@ fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, To
             Panel::new("t", "ΔL_d", vec![Series::line(d_ld.finish())]).caption("discrete energy, reduced − unreduced"),
         );
     }
-    let series = names.iter().zip(dq).map(|(n, e)| Series::named(format!("Δ{n}"), e.finish())).collect();
+    let series = coordinates
+        .iter()
+        .zip(dq)
+        .map(|(c, e)| Series::named(format!("Δ{}", c.name), e.finish()).wrapped(c.kind == CoordinateKind::Angle))
+        .collect();
     panels.push(Panel::new("t", "Δq", series).caption("coordinates, reduced − unreduced"));
     let summary = RunSummary::read(&dir.join(RUNS[0]))?;
     let figure = Figure::new("compare", format!("{}: reduced and unreduced runs", summary.system), panels)

@@ -3,10 +3,16 @@
 //! observed order between consecutive rows, p = ln(e_i / e_{i+1}) / ln(h_i / h_{i+1}).
 //!
 //! The error is ‖q_N − q(T)‖ against the system's exact solution when it has one (the summary's
-//! `reference_error`; for the charged particle this is the paper's Table 1), else ‖q_N − q_N*‖
-//! against the final configuration q_N* of the finest run (angle differences wrapped to (−π, π]),
-//! which then has no error of its own. Writes `convergence.csv` and the log–log figure
-//! `convergence.png` / `.svg` into the output directory.
+//! `reference_error`; for the charged particle this is the paper's Table 1). Without one it is
+//! ‖q_N − q_ref‖ against a reference run of the same method with [`REFERENCE_FACTOR`] times the
+//! finest N (angle differences wrapped to (−π, π]). For a method of order p the reference's own
+//! error is then 1/(8^p − 1) of the finest row's error (1/63 for p = 2), which the output estimates
+//! with the observed order; measuring against the finest listed run instead would report its
+//! neighbour's error 25 % too small and an order of 2.32 where it is 2.
+//!
+//! The observed order is *stable* where consecutive observed orders agree within [`STABLE`]; the
+//! output says where it is, and the figure draws its slope line only there. Writes
+//! `convergence.csv` and the log–log figure `convergence.png` / `.svg` into the output directory.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -17,9 +23,16 @@ use crate::diagnostics::CliError;
 use crate::plot::{self, Figure, Panel, Scale, Series, ToolError};
 use crate::progress::Progress;
 use crate::run::{self, Loaded};
+use crate::spec::Plan;
 
 /// Name of the table in the output directory.
 pub const TABLE: &str = "convergence.csv";
+
+/// Steps of the reference run, as a multiple of the finest N (systems without an exact solution).
+pub const REFERENCE_FACTOR: u64 = 8;
+
+/// Consecutive observed orders are stable when they differ by at most this fraction of the larger.
+pub const STABLE: f64 = 0.1;
 
 /// Options of `ddirac convergence`.
 pub struct Options {
@@ -42,8 +55,8 @@ pub struct Row {
     pub steps: u64,
     /// h = T/N.
     pub step: f64,
-    /// The error of the final configuration (`None` for the finest run when it is the reference).
-    pub error: Option<f64>,
+    /// The error of the final configuration.
+    pub error: f64,
     /// The observed order against the previous row.
     pub order: Option<f64>,
     /// Seconds spent integrating.
@@ -68,12 +81,48 @@ impl From<ddirac::Summary> for Outcome {
 }
 
 /// What the errors are measured against.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Reference {
     /// The system's exact solution.
     Exact,
-    /// The finest run.
-    Finest,
+    /// A run of the same method with `steps` steps.
+    Run {
+        /// Its number of steps: [`REFERENCE_FACTOR`] × the finest N.
+        steps: u64,
+        /// Its outcome.
+        outcome: Outcome,
+    },
+}
+
+impl Reference {
+    /// The method, in a few words, for the table's `reference` column.
+    fn column(&self) -> String {
+        match self {
+            Self::Exact => "exact solution".into(),
+            Self::Run { steps, .. } => format!("reference run N={steps}"),
+        }
+    }
+
+    /// The method, in a sentence.
+    fn against(&self) -> String {
+        match self {
+            Self::Exact => "‖q_N − q(T)‖ against the exact solution".into(),
+            Self::Run { steps, .. } => format!(
+                "‖q_N − q_ref‖ against a reference run of the same method with N = {steps} steps \
+                 ({REFERENCE_FACTOR} × the finest N)"
+            ),
+        }
+    }
+}
+
+/// Where the observed order is stable: the finest stretch of rows whose consecutive observed
+/// orders agree within [`STABLE`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stability {
+    /// The first and last row of the stretch (indices into the rows).
+    pub rows: (usize, usize),
+    /// The mean of its observed orders.
+    pub order: f64,
 }
 
 /// Runs the convergence study and prints its table.
@@ -90,33 +139,46 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     let kinds: Vec<CoordinateKind> = plan.system.coordinates().iter().map(|c| c.kind).collect();
 
     let mut progress = Progress::new(steps.iter().sum(), options.quiet);
-    let mut summaries: Vec<Outcome> = vec![];
+    let mut outcomes: Vec<Outcome> = vec![];
     let mut done = 0;
     for &n in &steps {
-        plan.problem.steps = n as usize;
-        plan.problem.step = duration / n as f64;
-        progress.stage(done, &format!("N = {n}"));
-        let summary = plan
-            .system
-            .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| {
-                progress.update(row.k);
-                Ok(())
-            })
-            .map_err(|e| {
-                miette::Report::new(CliError::Integration(e)).wrap_err(format!("the run with N = {n} failed"))
-            })?;
-        summaries.push(summary.into());
+        outcomes.push(integrate(&mut plan, n, duration, &mut progress, done, &format!("N = {n}"))?);
         done += n;
     }
     progress.finish();
 
-    let (rows, reference) = table(&steps, duration, &summaries, &kinds)?;
+    let reference = if outcomes.iter().all(|o| o.reference_error.is_some()) {
+        Reference::Exact
+    } else {
+        let finest = steps[steps.len() - 1];
+        if steps.len() < 2 {
+            return Err(ToolError::Usage {
+                message: "the system has no exact solution, so the errors are measured against a finer reference \
+                          run, and one run gives no observed order to judge them by"
+                    .into(),
+                help: Some("give at least two step counts, e.g. `--steps 100,200,400,800`".into()),
+            }
+            .into());
+        }
+        let n = finest.checked_mul(REFERENCE_FACTOR).filter(|n| usize::try_from(*n).is_ok()).ok_or_else(|| {
+            ToolError::Usage {
+                message: format!("the reference run would need {REFERENCE_FACTOR} × {finest} steps, too many to count"),
+                help: Some("give smaller step counts".into()),
+            }
+        })?;
+        let mut progress = Progress::new(n, options.quiet);
+        let outcome = integrate(&mut plan, n, duration, &mut progress, 0, &format!("reference N = {n}"))?;
+        progress.finish();
+        Reference::Run { steps: n, outcome }
+    };
+
+    let rows = table(&steps, duration, &outcomes, &reference, &kinds);
     let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
     std::fs::create_dir_all(&dir).map_err(|source| ToolError::Write { path: dir.clone(), source })?;
-    write_csv(&dir.join(TABLE), &rows)?;
-    plot::save(&figure(&plan.name, duration, &rows, reference), &dir)?;
+    write_csv(&dir.join(TABLE), &rows, &reference)?;
+    plot::save(&figure(&plan.name, duration, &rows, &reference), &dir)?;
     if !options.quiet {
-        println!("{}", text(&plan.name, duration, &rows, reference));
+        println!("{}", text(&plan.name, duration, &rows, &reference));
         println!("  table      {}", dir.join(TABLE).display());
         println!("  figure     convergence.png, convergence.svg in {}", dir.display());
         println!("  wall time  {:.3} s", started.elapsed().as_secs_f64());
@@ -124,46 +186,70 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     Ok(())
 }
 
+/// One run of `plan` with `n` steps over `duration`.
+fn integrate(
+    plan: &mut Plan,
+    n: u64,
+    duration: f64,
+    progress: &mut Progress,
+    done: u64,
+    label: &str,
+) -> Result<Outcome, miette::Report> {
+    plan.problem.steps = n as usize;
+    plan.problem.step = duration / n as f64;
+    progress.stage(done, label);
+    let summary = plan
+        .system
+        .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| {
+            progress.update(row.k);
+            Ok(())
+        })
+        .map_err(|e| miette::Report::new(CliError::Integration(e)).wrap_err(format!("the run with {label} failed")))?;
+    Ok(summary.into())
+}
+
 /// The rows, from the coarsest run to the finest.
 fn table(
     steps: &[u64],
     duration: f64,
-    summaries: &[Outcome],
+    outcomes: &[Outcome],
+    reference: &Reference,
     kinds: &[CoordinateKind],
-) -> Result<(Vec<Row>, Reference), ToolError> {
-    let exact: Option<Vec<f64>> = summaries.iter().map(|s| s.reference_error).collect();
-    let (errors, reference): (Vec<Option<f64>>, _) = match exact {
-        Some(errors) => (errors.into_iter().map(Some).collect(), Reference::Exact),
-        None => {
-            if steps.len() < 2 {
-                return Err(ToolError::Usage {
-                    message: "the system has no exact solution, so the errors are measured against the finest run, \
-                              and one run has nothing to be compared with"
-                        .into(),
-                    help: Some("give at least two step counts, e.g. `--steps 100,200,400,800`".into()),
-                });
-            }
-            let finest = &summaries[summaries.len() - 1].final_q;
-            let errors = summaries
-                .iter()
-                .enumerate()
-                .map(|(i, s)| (i + 1 < summaries.len()).then(|| distance(&s.final_q, finest, kinds)))
-                .collect();
-            (errors, Reference::Finest)
-        }
-    };
+) -> Vec<Row> {
     let mut rows: Vec<Row> = vec![];
-    for ((&n, summary), error) in steps.iter().zip(summaries).zip(errors) {
+    for (&n, outcome) in steps.iter().zip(outcomes) {
         let step = duration / n as f64;
-        let order = match (rows.last(), error) {
-            (Some(Row { error: Some(previous), step: h_previous, .. }), Some(e)) if *previous > 0.0 && e > 0.0 => {
-                Some((previous / e).ln() / (h_previous / step).ln())
+        let error = match reference {
+            Reference::Exact => outcome.reference_error.unwrap_or(f64::NAN),
+            Reference::Run { outcome: finer, .. } => distance(&outcome.final_q, &finer.final_q, kinds),
+        };
+        let order = match rows.last() {
+            Some(Row { error: previous, step: h_previous, .. }) if *previous > 0.0 && error > 0.0 => {
+                Some((previous / error).ln() / (h_previous / step).ln())
             }
             _ => None,
         };
-        rows.push(Row { steps: n, step, error, order, wall_seconds: summary.wall_seconds });
+        rows.push(Row { steps: n, step, error, order, wall_seconds: outcome.wall_seconds });
     }
-    Ok((rows, reference))
+    rows
+}
+
+/// Whether two observed orders agree within [`STABLE`].
+fn agree(a: f64, b: f64) -> bool {
+    a > 0.0 && b > 0.0 && (a - b).abs() <= STABLE * a.max(b)
+}
+
+/// The finest stretch of rows over which the observed order is stable, if any.
+pub fn stability(rows: &[Row]) -> Option<Stability> {
+    let orders: Vec<Option<f64>> = rows.iter().map(|r| r.order).collect();
+    let pair = |i: usize| matches!((orders[i - 1], orders[i]), (Some(a), Some(b)) if agree(a, b));
+    let last = (2..rows.len()).rev().find(|&i| pair(i))?;
+    let mut first = last - 1;
+    while first >= 2 && pair(first) {
+        first -= 1;
+    }
+    let stable: Vec<f64> = orders[first..=last].iter().flatten().copied().collect();
+    Some(Stability { rows: (first - 1, last), order: stable.iter().sum::<f64>() / stable.len() as f64 })
 }
 
 /// ‖a − b‖ with the differences of angles wrapped to (−π, π].
@@ -185,13 +271,19 @@ fn distance(a: &[f64], b: &[f64], kinds: &[CoordinateKind]) -> f64 {
         .sqrt()
 }
 
-fn write_csv(path: &std::path::Path, rows: &[Row]) -> Result<(), ToolError> {
+fn write_csv(path: &std::path::Path, rows: &[Row], reference: &Reference) -> Result<(), ToolError> {
     let temporary = plot::Temporary::for_target(path);
     let mut writer = csv::Writer::from_path(temporary.path()).map_err(|e| ToolError::write(path, e))?;
-    writer.write_record(["steps", "step", "error", "order", "wall_seconds"]).map_err(|e| ToolError::write(path, e))?;
-    let opt = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
+    writer
+        .write_record(["steps", "step", "error", "order", "wall_seconds", "reference"])
+        .map_err(|e| ToolError::write(path, e))?;
+    let against = reference.column();
     for r in rows {
-        let record = [r.steps.to_string(), r.step.to_string(), opt(r.error), opt(r.order), r.wall_seconds.to_string()];
+        // Shortest round-trip digits, with an exponent for tiny and huge numbers.
+        let number = |v: f64| format!("{v:?}");
+        let order = r.order.map_or(String::new(), number);
+        let record =
+            [r.steps.to_string(), number(r.step), number(r.error), order, number(r.wall_seconds), against.clone()];
         writer.write_record(&record).map_err(|e| ToolError::write(path, e))?;
     }
     writer.flush().map_err(|source| ToolError::Write { path: path.to_owned(), source })?;
@@ -213,72 +305,184 @@ fn significant(value: f64, digits: usize) -> String {
     }
 }
 
+/// `N = a…b` for the rows `first..=last`.
+fn span(rows: &[Row], (first, last): (usize, usize)) -> String {
+    format!("N = {}…{}", rows[first].steps, rows[last].steps)
+}
+
+/// What the output says about the observed order: where it is stable, or that it is not.
+fn order_note(rows: &[Row]) -> String {
+    let orders: Vec<String> = rows.iter().filter_map(|r| r.order).map(|p| format!("{p:.2}")).collect();
+    let within = format!("consecutive observed orders within {:.0} %", 100.0 * STABLE);
+    match stability(rows) {
+        Some(s) if s.rows.1 + 1 == rows.len() => {
+            format!("stable at {:.2} over {} ({within})", s.order, span(rows, s.rows))
+        }
+        Some(s) => format!(
+            "stable at {:.2} over {} ({within}), but not over the finer rows (observed orders {}): \
+             they may be limited by round-off",
+            s.order,
+            span(rows, s.rows),
+            orders.join(", ")
+        ),
+        None if orders.len() < 2 => {
+            "one observed order only: whether it is stable cannot be judged, so no slope line is drawn \
+             (give three or more step counts)"
+                .into()
+        }
+        None => format!(
+            "not stable: no two consecutive observed orders ({}) agree within {:.0} %; the runs may be outside \
+             the asymptotic range, so no slope line is drawn",
+            orders.join(", "),
+            100.0 * STABLE
+        ),
+    }
+}
+
+/// What the output says about the reference run: its size, and its own error as estimated from the
+/// observed order of the finest rows.
+fn reference_note(rows: &[Row], reference: &Reference) -> Option<String> {
+    let Reference::Run { steps, outcome } = reference else { return None };
+    let mut note = format!("N = {steps}, {:.3} s integrating", outcome.wall_seconds);
+    let finest = rows.last()?;
+    if let Some(p) = finest.order.filter(|p| *p > 0.0) {
+        let share = 1.0 / ((REFERENCE_FACTOR as f64).powf(p) - 1.0);
+        note.push_str(&format!(
+            "; its own error, by the observed order {p:.2} of the finest rows, is ≈ {} ({:.1} % of the finest row's)",
+            significant(finest.error * share, 2),
+            100.0 * share
+        ));
+    }
+    Some(note)
+}
+
 /// The printed table.
-fn text(system: &str, duration: f64, rows: &[Row], reference: Reference) -> String {
-    let against = match reference {
-        Reference::Exact => "‖q_N − q(T)‖ against the exact solution",
-        Reference::Finest => "‖q_N − q_N*‖ against the final configuration q_N* of the finest run",
-    };
+fn text(system: &str, duration: f64, rows: &[Row], reference: &Reference) -> String {
     let mut lines = vec![
-        format!("{system}: convergence over T = {duration}, error {against}"),
+        format!("{system}: convergence over T = {duration}, error {}", reference.against()),
         format!("  {:>8}  {:>12}  {:>12}  {:>6}", "N", "h", "error", "order"),
     ];
     for r in rows {
-        let error = r.error.map_or("(reference)".to_owned(), |e| significant(e, 5));
         let order = r.order.map_or(String::new(), |p| format!("{p:.2}"));
         let step = significant(r.step, 6);
         let step = if step.contains('.') { step.trim_end_matches('0').trim_end_matches('.') } else { &step };
-        lines.push(format!("  {:>8}  {:>12}  {:>12}  {:>6}", r.steps, step, error, order));
+        lines.push(format!("  {:>8}  {:>12}  {:>12}  {:>6}", r.steps, step, significant(r.error, 5), order));
     }
+    if let Some(note) = reference_note(rows, reference) {
+        lines.push(format!("  reference  {note}"));
+    }
+    lines.push(format!("  order      {}", order_note(rows)));
     lines.join("\n")
 }
 
-/// The log–log figure of error against step, with a reference line of the last observed order.
-fn figure(system: &str, duration: f64, rows: &[Row], reference: Reference) -> Figure {
-    let points: Vec<(f64, f64)> = rows.iter().filter_map(|r| Some((r.step, r.error?))).filter(|p| p.1 > 0.0).collect();
-    let mut series = vec![Series { markers: true, ..Series::named("error", points.clone()) }];
-    if let (Some(order), Some(&(h, e))) = (rows.iter().rev().find_map(|r| r.order), points.last()) {
-        let p = order.round().max(1.0);
-        let h0 = points.first().map_or(h, |q| q.0);
-        let line = vec![(h0, e * (h0 / h).powf(p)), (h, e)];
-        series.push(Series { dashed: true, ..Series::named(format!("slope {p}"), line) });
+/// The log–log figure of error against step, with a line of the observed order over the rows where
+/// it is stable.
+fn figure(system: &str, duration: f64, rows: &[Row], reference: &Reference) -> Figure {
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.step, r.error)).filter(|p| p.1 > 0.0).collect();
+    let mut series = vec![Series { markers: true, ..Series::named("error", points) }];
+    let stability = stability(rows);
+    if let Some(Stability { rows: (first, last), order }) = stability {
+        // The nearest whole order when the observed one is within the stability margin of it.
+        let slope = if (order - order.round()).abs() <= STABLE * order { order.round() } else { order };
+        // Drawn a factor 2 below the errors, so that it does not hide them.
+        let (h0, (h, e)) = (rows[first].step, (rows[last].step, 0.5 * rows[last].error));
+        let line = vec![(h0, e * (h0 / h).powf(slope)), (h, e)];
+        let name = format!("slope {slope} (observed {order:.2}, {})", span(rows, (first, last)));
+        series.push(Series { dashed: true, ..Series::named(name, line) });
     }
     let y_label = match reference {
-        Reference::Exact => "‖q_N − q(T)‖",
-        Reference::Finest => "‖q_N − q_N*‖ (finest run)",
+        Reference::Exact => "‖q_N − q(T)‖".to_owned(),
+        Reference::Run { steps, .. } => format!("‖q_N − q_ref‖ (reference run, N = {steps})"),
     };
-    let panel = Panel::new("step h", y_label, series).scale(Scale::LogLog);
+    let against = match reference {
+        Reference::Exact => "errors against the exact solution".to_owned(),
+        Reference::Run { steps, .. } => {
+            format!("errors against a reference run with N = {steps} ({REFERENCE_FACTOR} × the finest N)")
+        }
+    };
+    let caption = match stability {
+        Some(Stability { rows: (first, last), order }) => {
+            let only = if last + 1 == rows.len() { "" } else { " only" };
+            format!("observed order {order:.2}, stable over {}{only}", span(rows, (first, last)))
+        }
+        None => "observed order not stable: no slope line".to_owned(),
+    };
+    let panel = Panel::new("step h", y_label, series).scale(Scale::LogLog).caption(caption);
+    let listed = rows.iter().map(|r| r.steps.to_string()).collect::<Vec<_>>().join(", ");
     Figure::new("convergence", format!("{system}: error at T = {duration}"), vec![panel])
-        .subtitle(format!("N = {}", rows.iter().map(|r| r.steps.to_string()).collect::<Vec<_>>().join(", ")))
+        .subtitle(format!("N = {listed}; {against}"))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn rows_with(errors: &[(u64, f64)]) -> Vec<Row> {
+        let outcomes: Vec<Outcome> =
+            errors.iter().map(|&(_, e)| Outcome { reference_error: Some(e), ..outcome() }).collect();
+        let steps: Vec<u64> = errors.iter().map(|&(n, _)| n).collect();
+        table(&steps, 1.0, &outcomes, &Reference::Exact, &[CoordinateKind::Real])
+    }
+
     #[test]
     fn observed_order_is_the_log_slope_between_rows() {
         // e = h²: order exactly 2.
-        let summaries: Vec<Outcome> =
-            [1.0f64, 0.5, 0.25].iter().map(|h| Outcome { reference_error: Some(h * h), ..outcome() }).collect();
-        let (rows, reference) = table(&[1, 2, 4], 1.0, &summaries, &[CoordinateKind::Real]).unwrap();
-        assert_eq!(reference, Reference::Exact);
+        let rows = rows_with(&[(1, 1.0), (2, 0.25), (4, 0.0625)]);
         assert_eq!(rows[0].order, None);
         assert!((rows[1].order.unwrap() - 2.0).abs() < 1e-12);
         assert!((rows[2].order.unwrap() - 2.0).abs() < 1e-12);
     }
 
     #[test]
-    fn without_an_exact_solution_the_finest_run_is_the_reference() {
+    fn without_an_exact_solution_the_errors_are_against_the_reference_run() {
         let at = |q: f64| Outcome { final_q: vec![q], ..outcome() };
         let kinds = [CoordinateKind::Real];
-        let (rows, reference) = table(&[10, 20, 40], 1.0, &[at(1.4), at(1.1), at(1.0)], &kinds).unwrap();
-        assert_eq!(reference, Reference::Finest);
-        assert!((rows[0].error.unwrap() - 0.4).abs() < 1e-12);
-        assert!((rows[1].error.unwrap() - 0.1).abs() < 1e-12);
-        assert_eq!(rows[2].error, None);
-        assert!((rows[1].order.unwrap() - 2.0).abs() < 1e-9);
-        assert!(table(&[10], 1.0, &[at(1.0)], &kinds).is_err());
+        let reference = Reference::Run { steps: 320, outcome: at(1.0) };
+        let rows = table(&[10, 20, 40], 1.0, &[at(1.4), at(1.1), at(1.025)], &reference, &kinds);
+        assert!((rows[0].error - 0.4).abs() < 1e-12);
+        assert!((rows[1].error - 0.1).abs() < 1e-12);
+        assert!((rows[2].error - 0.025).abs() < 1e-12);
+        assert!((rows[2].order.unwrap() - 2.0).abs() < 1e-9);
+        assert_eq!(reference.column(), "reference run N=320");
+    }
+
+    #[test]
+    fn the_order_is_stable_where_consecutive_orders_agree_within_ten_percent() {
+        // Orders 1.16, 1.97, 1.99 (the paper's Table 1): stable over N = 50…200.
+        let rows = rows_with(&[(10, 1.6781), (50, 0.25971), (100, 0.066257), (200, 0.016642)]);
+        let s = stability(&rows).unwrap();
+        assert_eq!(s.rows, (1, 3));
+        assert!((s.order - 1.98).abs() < 0.01, "{s:?}");
+        assert!(order_note(&rows).starts_with("stable at 1.98 over N = 50…200"), "{}", order_note(&rows));
+        // Orders 1, 3, 7: nowhere stable.
+        let rows = rows_with(&[(1, 1.0), (2, 0.5), (4, 0.0625), (8, 0.0625 / 128.0)]);
+        assert_eq!(stability(&rows), None);
+        assert!(order_note(&rows).starts_with("not stable"));
+        // Two rows: one order, nothing to compare it with.
+        assert_eq!(stability(&rows[..2]), None);
+        assert!(order_note(&rows[..2]).starts_with("one observed order only"));
+    }
+
+    #[test]
+    fn the_slope_line_is_drawn_only_over_the_stable_rows() {
+        let rows = rows_with(&[(1, 1.0), (2, 0.5), (4, 0.0625), (8, 0.0625 / 128.0)]);
+        let drawn = figure("s", 1.0, &rows, &Reference::Exact);
+        assert_eq!(drawn.panels[0].series.len(), 1, "no slope line where the order is not stable");
+        // Orders 1, 2, 2: the line spans N = 2…8 with slope 2.
+        let rows = rows_with(&[(1, 1.0), (2, 0.5), (4, 0.125), (8, 0.03125)]);
+        let drawn = figure("s", 1.0, &rows, &Reference::Exact);
+        let line = &drawn.panels[0].series[1];
+        assert!(line.name.as_ref().unwrap().starts_with("slope 2 (observed 2.00, N = 2…8)"));
+        assert_eq!(line.points, vec![(0.5, 0.25), (0.125, 0.015625)]);
+    }
+
+    #[test]
+    fn the_reference_run_s_own_error_is_estimated_from_the_observed_order() {
+        let rows = rows_with(&[(10, 4e-2), (20, 1e-2)]);
+        let reference = Reference::Run { steps: 160, outcome: outcome() };
+        let note = reference_note(&rows, &reference).unwrap();
+        // 1e-2 / (8² − 1) = 1.6e-4, 1.6 %.
+        assert!(note.contains("≈ 0.00016 (1.6 % of the finest row's)"), "{note}");
     }
 
     #[test]

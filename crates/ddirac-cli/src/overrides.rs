@@ -2,7 +2,9 @@
 //! quote and point into the text that is actually run.
 //!
 //! The key is a dotted TOML key (`method.reduced`, `parameters.B0`); the value is parsed as a TOML
-//! value (`false`, `1e-3`, `[0, 1]`) and taken as a string when it is not one (`left`).
+//! value (`false`, `1e-3`, `[0, 1]`) and taken as a string when it is not one (`left`). A value that
+//! is almost a TOML boolean or number (`False`, `NaN`, `Inf`, `1.`) is refused with its TOML spelling
+//! rather than taken as a string.
 
 use toml_edit::{DocumentMut, InlineTable, Item, Key, Table, Value};
 
@@ -38,7 +40,13 @@ fn set(doc: &mut DocumentMut, arg: &str) -> Result<(), String> {
     }
     let path = Key::parse(key).map_err(|e| format!("`{key}` is not a TOML key: {}", e.message().trim_end()))?;
     let value = value.trim();
-    let value: Value = value.parse().unwrap_or_else(|_| Value::from(value));
+    let value: Value = match value.parse() {
+        Ok(value) => value,
+        Err(_) => match misspelt(key, value) {
+            Some(why) => return Err(why),
+            None => Value::from(value),
+        },
+    };
 
     let (last, parents) = path.split_last().ok_or("the key is empty")?;
     let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
@@ -67,6 +75,25 @@ fn set(doc: &mut DocumentMut, arg: &str) -> Result<(), String> {
     }
     table.insert(last.get(), Item::Value(value));
     Ok(())
+}
+
+/// Why `text`, which is not a TOML value, is not taken as a string either: it is a boolean or a
+/// number spelt as other languages spell them (`False`, `NaN`, `Inf`, `1.`, `.5`).
+fn misspelt(key: &str, text: &str) -> Option<String> {
+    let quote = format!("to set the text `{text}`, quote it: `--set {key}='\"{text}\"'`");
+    let lower = text.to_ascii_lowercase();
+    if lower == "true" || lower == "false" {
+        return Some(format!("`{text}` is not a TOML value; booleans are `true`/`false` (lower case); {quote}"));
+    }
+    let number: f64 = text.parse().ok()?;
+    let toml = if number.is_nan() {
+        "nan".to_owned()
+    } else if number.is_infinite() {
+        if number > 0.0 { "inf" } else { "-inf" }.to_owned()
+    } else {
+        format!("{number:?}")
+    };
+    Some(format!("`{text}` is not a TOML value; write the number as `{toml}`; {quote}"))
 }
 
 #[cfg(test)]
@@ -106,6 +133,24 @@ mod tests {
         assert!(why("system.name=x").contains("`system` is a string, not a table"));
         assert!(why("time=3").contains("is a table"));
         assert!(why("a..b=1").contains("not a TOML key"));
+    }
+
+    #[test]
+    fn booleans_and_numbers_spelt_otherwise_get_their_toml_spelling() {
+        let why = |arg: &str| match with(arg) {
+            Err(CliError::Set { why, .. }) => why,
+            other => panic!("{arg}: {other:?}"),
+        };
+        assert!(why("method.reduced=False").contains("booleans are `true`/`false`"));
+        assert!(why("method.reduced=TRUE").contains("booleans are `true`/`false`"));
+        assert!(why("parameters.m=NaN").contains("`nan`"));
+        assert!(why("parameters.m=Inf").contains("`inf`"));
+        assert!(why("parameters.m=-Infinity").contains("`-inf`"));
+        assert!(why("parameters.m=1.").contains("`1.0`"));
+        assert!(why("parameters.m=.5").contains("`0.5`"));
+        assert!(with("parameters.m=inf").unwrap().contains("m = inf"));
+        assert!(why("method.reduced=False").contains("--set method.reduced='\"False\"'"));
+        assert!(with("method.rule=\"False\"").unwrap().contains("rule = \"False\""));
     }
 
     #[test]

@@ -15,6 +15,7 @@ pub struct SummaryJson<'a> {
     system: &'a str,
     parameters: Parameters<'a>,
     coordinates: &'a [String],
+    angles: Vec<String>,
     method: MethodJson,
     steps: usize,
     step: f64,
@@ -145,6 +146,13 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         system: &plan.name,
         parameters: Parameters(&plan.parameters),
         coordinates: &summary.coordinates,
+        angles: plan
+            .system
+            .coordinates()
+            .into_iter()
+            .filter(|c| c.kind == ddirac::CoordinateKind::Angle)
+            .map(|c| c.name)
+            .collect(),
         method: MethodJson {
             rule: method.rule.name(),
             variant: method.variant.name(),

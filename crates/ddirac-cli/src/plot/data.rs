@@ -26,6 +26,8 @@ pub struct RunSummary {
     pub parameters: Vec<(String, f64)>,
     /// The coordinate names, in order.
     pub coordinates: Vec<String>,
+    /// The angles written wrapped to (−π, π]: `angles` when `output.wrap_angles`, else none.
+    pub wrapped: Vec<String>,
     /// One line on the run: steps, step, rule, variant, reduced or not.
     pub description: String,
 }
@@ -47,6 +49,12 @@ impl RunSummary {
             .as_object()
             .map(|o| o.iter().filter_map(|(k, v)| Some((k.clone(), v.as_f64()?))).collect())
             .unwrap_or_default();
+        let wrapped = if json["output"]["wrap_angles"].as_bool().unwrap_or(false) {
+            let names = json["angles"].as_array().map(|a| a.iter().filter_map(|n| n.as_str()).collect::<Vec<_>>());
+            names.unwrap_or_default().into_iter().map(str::to_owned).collect()
+        } else {
+            vec![]
+        };
         let method = &json["method"];
         let text = |v: &Value| v.as_str().unwrap_or("?").to_owned();
         let description = format!(
@@ -57,7 +65,12 @@ impl RunSummary {
             text(&method["variant"]),
             if method["reduced"].as_bool().unwrap_or(false) { "reduced" } else { "unreduced" },
         );
-        Ok(Self { system, parameters, coordinates, description })
+        Ok(Self { system, parameters, coordinates, wrapped, description })
+    }
+
+    /// Whether the coordinate `name` is an angle written wrapped to (−π, π].
+    pub fn is_wrapped(&self, name: &str) -> bool {
+        self.wrapped.iter().any(|w| w == name)
     }
 
     /// The parameter called `name`.

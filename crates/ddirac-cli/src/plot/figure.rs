@@ -4,6 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::segments::segments;
 use super::ticks::{self, TickFormat};
 use super::FONT;
 
@@ -87,17 +88,30 @@ pub struct Series {
     pub dashed: bool,
     /// Draw the line wide and pale, so that a line drawn over it stays visible where they coincide.
     pub wide: bool,
+    /// The values are angles wrapped to (−π, π]: the line is broken where they wrap.
+    pub wrapped: bool,
 }
 
 impl Series {
     /// A plain unnamed line.
     pub fn line(points: Vec<(f64, f64)>) -> Self {
-        Self { name: None, points, markers: false, dashed: false, wide: false }
+        Self { name: None, points, markers: false, dashed: false, wide: false, wrapped: false }
     }
 
     /// A named line.
     pub fn named(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Self { name: Some(name.into()), ..Self::line(points) }
+    }
+
+    /// The same line, of angles wrapped to (−π, π] if `wrapped`.
+    pub fn wrapped(mut self, wrapped: bool) -> Self {
+        self.wrapped = wrapped;
+        self
+    }
+
+    /// The pieces the line is drawn in (see [`segments`]).
+    fn segments(&self) -> Vec<Vec<(f64, f64)>> {
+        segments(&self.points, self.wrapped)
     }
 }
 
@@ -139,13 +153,14 @@ impl Panel {
         Self { caption: None, x_label: x_label.into(), y_label: y_label.into(), series, scale: Scale::Linear }
     }
 
-    /// The smallest and largest finite x and y over all series (positive ones only for log axes).
+    /// The smallest and largest finite x and y over all series, including where lines of wrapped
+    /// angles meet ±π (positive ones only for log axes).
     fn bounds(&self) -> Option<((f64, f64), (f64, f64))> {
         let positive = self.scale == Scale::LogLog;
-        let mut points = self
-            .series
+        let pieces: Vec<Vec<(f64, f64)>> = self.series.iter().flat_map(Series::segments).collect();
+        let mut points = pieces
             .iter()
-            .flat_map(|s| &s.points)
+            .flatten()
             .filter(|(x, y)| x.is_finite() && y.is_finite() && (!positive || (*x > 0.0 && *y > 0.0)));
         let &(x0, y0) = points.next()?;
         Some(points.fold(((x0, x0), (y0, y0)), |((xl, xh), (yl, yh)), &(x, y)| {
@@ -154,17 +169,39 @@ impl Panel {
     }
 }
 
-fn font(size: f64) -> TextStyle<'static> {
-    (FONT, size).into_font().color(&BLACK)
+/// Lengths in pixels of a figure drawn `k` times its size (k > 1 for anti-aliased bitmaps).
+#[derive(Debug, Clone, Copy)]
+struct Px(u32);
+
+impl Px {
+    /// `v` pixels of the figure at its own size.
+    fn f(self, v: f64) -> f64 {
+        v * f64::from(self.0)
+    }
+
+    /// `v` whole pixels of the figure at its own size.
+    fn u(self, v: u32) -> u32 {
+        v * self.0
+    }
+
+    /// `v` whole pixels of the figure at its own size, signed.
+    fn i(self, v: i32) -> i32 {
+        v * self.0 as i32
+    }
+
+    fn font(self, size: f64) -> TextStyle<'static> {
+        (FONT, self.f(size)).into_font().color(&BLACK)
+    }
 }
 
-/// Draws `figure` on `root`, which must have the figure's size.
-pub fn draw<DB: DrawingBackend>(figure: &Figure, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+/// Draws `figure` on `root`, which must have `k` times the figure's size in each direction.
+pub fn draw<DB: DrawingBackend>(figure: &Figure, root: &DrawingArea<DB, Shift>, k: u32) -> Result<(), String> {
+    let px = Px(k.max(1));
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let mut body = root.margin(12, 0, 0, 0).titled(&figure.title, font(TITLE_SIZE)).map_err(e)?;
+    let mut body = root.margin(px.i(12), 0, 0, 0).titled(&figure.title, px.font(TITLE_SIZE)).map_err(e)?;
     if let Some(subtitle) = &figure.subtitle {
-        body = body.titled(subtitle, font(SUBTITLE_SIZE).color(&BLACK.mix(0.7))).map_err(e)?;
+        body = body.titled(subtitle, px.font(SUBTITLE_SIZE).color(&BLACK.mix(0.7))).map_err(e)?;
     }
     let areas = body.split_evenly((figure.panels.len().max(1), 1));
     // Panels over the same horizontal quantity share its range and name it once, under the last.
@@ -175,13 +212,13 @@ pub fn draw<DB: DrawingBackend>(figure: &Figure, root: &DrawingArea<DB, Shift>) 
             ranges.reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
         })
         .flatten();
-    let frames: Vec<Frame> = figure.panels.iter().zip(&areas).map(|(p, a)| Frame::new(p, a, x_range)).collect();
+    let frames: Vec<Frame> = figure.panels.iter().zip(&areas).map(|(p, a)| Frame::new(p, a, x_range, px)).collect();
     // One width for the space left of every panel, so that the plotting areas line up.
-    let y_area = frames.iter().map(|f| f.y_area_width(root)).max().unwrap_or(0);
+    let y_area = frames.iter().map(|f| f.y_area_width(root, px)).max().unwrap_or(0);
     let last = figure.panels.len().saturating_sub(1);
     for (i, ((panel, area), frame)) in figure.panels.iter().zip(&areas).zip(&frames).enumerate() {
         let x_desc = !shared_x || i == last;
-        draw_panel(panel, area, frame, y_area, x_desc)?;
+        draw_panel(panel, area, frame, y_area, x_desc, px)?;
     }
     root.present().map_err(e)
 }
@@ -242,11 +279,16 @@ impl Axis {
 
 impl Frame {
     /// The frame of `panel`, over `x_range` if given instead of its own data's.
-    fn new<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>, x_range: Option<(f64, f64)>) -> Self {
+    fn new<DB: DrawingBackend>(
+        panel: &Panel,
+        area: &DrawingArea<DB, Shift>,
+        x_range: Option<(f64, f64)>,
+        px: Px,
+    ) -> Self {
         let ((xl, xh), (yl, yh)) = panel.bounds().unwrap_or(((0.0, 1.0), (0.0, 1.0)));
         let (xl, xh) = x_range.unwrap_or((xl, xh));
         // Room above the data for the legend: the fraction f of the height it takes.
-        let f = legend_room(panel, area);
+        let f = legend_room(panel, area, px);
         let (yl, yh) = match panel.scale {
             Scale::LogLog if yh > yl => (yl, yh * (yh / yl).powf(f / (1.0 - f))),
             Scale::Linear if yh > yl => (yl, yh + (yh - yl) * f / (1.0 - f)),
@@ -265,7 +307,7 @@ impl Frame {
                 // Widen one range so that a unit has about the same length on both axes.
                 let (x, y) = (ticks::padded(xl, xh, 0.05), ticks::padded(yl, yh, 0.05));
                 let (w, h) = area.dim_in_pixel();
-                let (w, h) = ((w as f64 - 200.0).max(1.0), (h as f64 - 110.0).max(1.0));
+                let (w, h) = ((w as f64 - px.f(200.0)).max(1.0), (h as f64 - px.f(110.0)).max(1.0));
                 let (dx, dy) = (x.1 - x.0, y.1 - y.0);
                 let (x, y) = if dx / w > dy / h {
                     let (half, c) = (0.5 * dx * h / w, 0.5 * (y.0 + y.1));
@@ -281,16 +323,16 @@ impl Frame {
     }
 
     /// The space left of the plotting area: the widest tick label and the rotated axis name.
-    fn y_area_width<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> u32 {
+    fn y_area_width<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>, px: Px) -> u32 {
         let widest = self
             .y
             .ticks
             .0
             .iter()
-            .map(|&v| area.estimate_text_size(&self.y.format.format(v), &font(TICK_SIZE)).map_or(0, |(w, _)| w))
+            .map(|&v| area.estimate_text_size(&self.y.format.format(v), &px.font(TICK_SIZE)).map_or(0, |(w, _)| w))
             .max()
             .unwrap_or(0);
-        widest + AXIS_SIZE as u32 + 36
+        widest + px.u(AXIS_SIZE as u32 + 36)
     }
 
     fn map(&self, &(x, y): &(f64, f64)) -> Option<(f64, f64)> {
@@ -315,12 +357,18 @@ fn draw_panel<DB: DrawingBackend>(
     frame: &Frame,
     y_area: u32,
     x_desc: bool,
+    px: Px,
 ) -> Result<(), String> {
     let mut builder = ChartBuilder::on(area);
-    let x_area = if x_desc { 64 } else { 36 };
-    builder.margin_top(12).margin_right(36).margin_left(8).x_label_area_size(x_area).y_label_area_size(y_area);
+    let x_area = px.u(if x_desc { 64 } else { 36 });
+    builder
+        .margin_top(px.u(12))
+        .margin_right(px.u(36))
+        .margin_left(px.u(8))
+        .x_label_area_size(x_area)
+        .y_label_area_size(y_area);
     if let Some(caption) = &panel.caption {
-        builder.caption(caption, font(CAPTION_SIZE));
+        builder.caption(caption, px.font(CAPTION_SIZE));
     }
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let (x_fmt, y_fmt) = (|v: &f64| frame.x.format.format(*v), |v: &f64| frame.y.format.format(*v));
@@ -334,10 +382,12 @@ fn draw_panel<DB: DrawingBackend>(
                 .x_label_formatter(&x_fmt)
                 .y_label_formatter(&y_fmt)
                 .y_desc(frame.y.label.as_str())
-                .label_style(font(TICK_SIZE))
-                .axis_desc_style(font(AXIS_SIZE))
-                .bold_line_style(BLACK.mix(0.12))
-                .light_line_style(BLACK.mix(0.04));
+                .label_style(px.font(TICK_SIZE))
+                .axis_desc_style(px.font(AXIS_SIZE))
+                .set_all_tick_mark_size(px.u(5))
+                .axis_style(BLACK.stroke_width(px.u(1)))
+                .bold_line_style(BLACK.mix(0.12).stroke_width(px.u(1)))
+                .light_line_style(BLACK.mix(0.04).stroke_width(px.u(1)));
             if x_desc {
                 mesh.x_desc(frame.x.label.as_str());
             }
@@ -345,38 +395,54 @@ fn draw_panel<DB: DrawingBackend>(
             for (i, series) in panel.series.iter().enumerate() {
                 let color = PALETTE[i % PALETTE.len()];
                 let style = if series.wide {
-                    ShapeStyle::from(&color.mix(0.4)).stroke_width(7)
+                    ShapeStyle::from(&color.mix(0.4)).stroke_width(px.u(7))
                 } else {
-                    ShapeStyle::from(&color).stroke_width(2)
+                    ShapeStyle::from(&color).stroke_width(px.u(2))
                 };
-                let points = series.points.iter().filter_map(|p| frame.map(p));
-                let drawn = if series.dashed {
-                    chart.draw_series(DashedLineSeries::new(points, 12, 8, style)).map_err(e)?
-                } else {
-                    chart.draw_series(LineSeries::new(points, style)).map_err(e)?
-                };
-                if let Some(name) = &series.name {
-                    let dot = series.markers && series.points.len() == 1;
-                    drawn.label(name.as_str()).legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
-                        if dot {
-                            Circle::new((x + 12, y), 5, color.filled()).into_dyn()
-                        } else {
-                            PathElement::new([(x, y), (x + 24, y)], style).into_dyn()
-                        }
-                    });
+                // One line per piece; the legend entry goes with the first (an empty line if none).
+                let mut pieces = series.segments().into_iter();
+                let mut piece = pieces.next().unwrap_or_default();
+                let mut labelled = false;
+                loop {
+                    let points = piece.iter().filter_map(|p| frame.map(p));
+                    let drawn = if series.dashed {
+                        let (dash, gap) = (px.u(12), px.u(8));
+                        chart.draw_series(DashedLineSeries::new(points, dash, gap, style)).map_err(e)?
+                    } else {
+                        chart.draw_series(LineSeries::new(points, style)).map_err(e)?
+                    };
+                    if let (Some(name), false) = (&series.name, labelled) {
+                        labelled = true;
+                        let dot = series.markers && series.points.len() == 1;
+                        let (r, d) = (px.i(5), px.i(12));
+                        drawn.label(name.as_str()).legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
+                            if dot {
+                                Circle::new((x + d, y), r, color.filled()).into_dyn()
+                            } else {
+                                PathElement::new([(x, y), (x + 2 * d, y)], style).into_dyn()
+                            }
+                        });
+                    }
+                    match pieces.next() {
+                        Some(next) => piece = next,
+                        None => break,
+                    }
                 }
                 if series.markers {
+                    let r = px.i(5);
                     let dots =
-                        series.points.iter().filter_map(|p| frame.map(p)).map(|p| Circle::new(p, 5, color.filled()));
+                        series.points.iter().filter_map(|p| frame.map(p)).map(|p| Circle::new(p, r, color.filled()));
                     chart.draw_series(dots).map_err(e)?;
                 }
             }
             if panel.series.iter().any(|s| s.name.is_some()) {
                 chart
                     .configure_series_labels()
-                    .label_font(font(LEGEND_SIZE))
+                    .label_font(px.font(LEGEND_SIZE))
+                    .margin(px.u(10))
+                    .legend_area_size(px.u(30))
                     .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK.mix(0.4))
+                    .border_style(BLACK.mix(0.4).stroke_width(px.u(1)))
                     .position(legend_position(panel, frame))
                     .draw()
                     .map_err(e)?;
@@ -435,14 +501,14 @@ impl<R: plotters::coord::ranged1d::Ranged<ValueType = f64>> plotters::coord::ran
 }
 
 /// The fraction of a panel's plotting height its legend takes (0 without a legend).
-fn legend_room<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>) -> f64 {
+fn legend_room<DB: DrawingBackend>(panel: &Panel, area: &DrawingArea<DB, Shift>, px: Px) -> f64 {
     let entries = panel.series.iter().filter(|s| s.name.is_some()).count();
     if entries == 0 {
         return 0.0;
     }
     let caption = if panel.caption.is_some() { 1.6 * CAPTION_SIZE } else { 0.0 };
-    let plot_height = (area.dim_in_pixel().1 as f64 - 76.0 - caption).max(1.0);
-    ((entries as f64 * 1.35 * LEGEND_SIZE + 24.0) / plot_height).min(0.5)
+    let plot_height = (area.dim_in_pixel().1 as f64 - px.f(76.0 + caption)).max(1.0);
+    (px.f(entries as f64 * 1.35 * LEGEND_SIZE + 24.0) / plot_height).min(0.5)
 }
 
 /// The corner of the plotting area where the legend hides the fewest points.

@@ -2,14 +2,18 @@
 //! of `ddirac run --compare` and `ddirac convergence`.
 //!
 //! Text is drawn with DejaVu Sans, embedded in the binary (`assets/`, Bitstream Vera license), so
-//! that figures look the same on a machine without any font installed. Every file is written under
-//! a temporary name and renamed into place once complete.
+//! that figures look the same on a machine without any font installed. PNG files are anti-aliased
+//! (drawn at three times their size and averaged down); lines of angles written wrapped to (−π, π]
+//! are broken where the angle wraps. Every file is written under a temporary name and renamed into
+//! place once complete.
 
 mod data;
 mod error;
 mod figure;
 mod run_figures;
 mod sample;
+mod segments;
+mod supersample;
 mod ticks;
 
 use std::path::{Path, PathBuf};
@@ -46,17 +50,14 @@ pub fn save(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
     let png = dir.join(format!("{}.png", figure.name));
     // The bitmap backend picks the encoder from the extension, so the temporary name keeps it.
     let temporary = Temporary(dir.join(format!(".{}.partial.png", figure.name)));
-    {
-        let root = BitMapBackend::new(&temporary.0, size).into_drawing_area();
-        figure::draw(figure, &root).map_err(|why| ToolError::write(&png, why))?;
-    }
+    supersample::write_png(figure, &temporary.0, &png)?;
     temporary.commit(&png)?;
 
     let svg = dir.join(format!("{}.svg", figure.name));
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-        figure::draw(figure, &root).map_err(|why| ToolError::write(&svg, why))?;
+        figure::draw(figure, &root, 1).map_err(|why| ToolError::write(&svg, why))?;
     }
     write_atomically(&svg, text.as_bytes())?;
     Ok(vec![png, svg])

@@ -111,7 +111,8 @@ pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile) -> Result<
         if path.is_some() && name == "phi1" {
             phi1 = Some(points.clone());
         }
-        panels.push(Panel::new("t", name.as_str(), vec![Series::line(points)]));
+        let series = Series::line(points).wrapped(summary.is_wrapped(name));
+        panels.push(Panel::new("t", name.as_str(), vec![series]));
     }
     let mut figures = vec![titled("coordinates", format!("{system}: coordinates"), panels)];
 
@@ -140,7 +141,7 @@ pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile) -> Result<
     }
 
     if let (Some(phi1), Some((_, _, path))) = (phi1, path) {
-        let panel = Panel::new("t", "φ₁", vec![Series::line(phi1)]);
+        let panel = Panel::new("t", "φ₁", vec![Series::line(phi1).wrapped(summary.is_wrapped("phi1"))]);
         figures.push(titled("phi1", format!("{system}: φ₁(t)"), vec![panel]));
         let path = path.finish();
         let start = path.first().map(|&p| Series { markers: true, ..Series::named("start", vec![p]) });
