@@ -150,3 +150,23 @@ pub fn underlined(stderr: &str, line: &str) -> Vec<String> {
     }
     runs
 }
+
+/// The standard output of a command.
+pub fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+/// The standard error of a command.
+pub fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// The line of a printed report that starts with `key` (after the indentation).
+pub fn line<'a>(report: &'a str, key: &str) -> &'a str {
+    report.lines().find(|l| l.trim_start().starts_with(key)).unwrap_or_else(|| panic!("no `{key}` line:\n{report}"))
+}
+
+/// The `summary.json` of the run directory `dir.out()`.
+pub fn summary(dir: &TempDir) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.out().join("summary.json")).unwrap()).unwrap()
+}
