@@ -15,10 +15,10 @@ use std::time::Instant;
 use ddirac::{Coordinate, CoordinateKind};
 
 use crate::diagnostics::CliError;
-use crate::output;
 use crate::plot::{self, Envelope, Figure, Panel, RunSummary, Series, ToolError, TrajectoryFile};
 use crate::progress::Progress;
 use crate::run::{self, Loaded, RunOptions};
+use crate::{estimate, lock, output, run_dir};
 
 /// Name of the table of differences in the output directory.
 pub const TABLE: &str = "compare.csv";
@@ -32,7 +32,10 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
     let formats =
         output::Formats::choose(&options.format, spec.output.format.as_ref(), &source).map_err(CliError::from)?;
     let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
-    let created = !dir.exists();
+    estimate::check(&source, &spec, &plan, formats, &dir, 2, options.quiet).map_err(CliError::from)?;
+    let plots = spec.output.plots.as_ref().is_some_and(|p| *p.get_ref());
+    // DIR holds the two runs and their comparison: it is owned by this command while it lasts.
+    let (lock, created) = run_dir::lock(&dir, &lock::command_line())?;
     // What the spec itself asks for: a failure of the run it does not ask for must not be labelled
     // as asked for in the spec (`reduced = false` is not "reduction asked here").
     let asked = plan.method.reduced;
@@ -40,18 +43,30 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
     let steps = plan.problem.steps as u64;
     let mut progress = Progress::new(2 * steps, options.quiet);
     let mut walls = vec![];
+    let mut figures = 0;
     for (i, name) in RUNS.into_iter().enumerate() {
         plan.method.reduced = i == 0;
         plan.spans.reduced = if plan.method.reduced == asked { reduced_span.clone() } else { None };
         progress.stage(i as u64 * steps, name);
-        let result =
-            run::write_run(&source, &plan, &options.spec, &dir.join(name), formats, Instant::now(), &mut progress);
+        let result = run::write_run(
+            &source,
+            &plan,
+            &options.spec,
+            &dir.join(name),
+            formats,
+            plots,
+            Instant::now(),
+            &mut progress,
+        );
         match result {
-            Ok((summary, _)) => walls.push(summary.wall_seconds),
+            Ok(finished) => {
+                walls.push(finished.summary.wall_seconds);
+                figures += finished.figures;
+            }
             Err(error) => {
+                drop(lock);
                 if created {
-                    // Removes the directories this command made, if the failed run left them empty.
-                    let _ = std::fs::remove_dir(dir.join(name));
+                    // Removes the directory this command made, if the failed run left it empty.
                     let _ = std::fs::remove_dir(&dir);
                 }
                 return Err(miette::Report::new(error).wrap_err(failed(name, asked, reduced_span.is_some())));
@@ -62,12 +77,8 @@ pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
 
     let coordinates = plan.system.coordinates();
     let differences = differences(&dir, &coordinates)?;
-    let mut figures = plot::save(&differences.figure, &dir)?.len() / 2;
-    if spec.output.plots.as_ref().is_some_and(|p| *p.get_ref()) {
-        for name in RUNS {
-            figures += plot::plot_run(&dir.join(name))?.len() / 2;
-        }
-    }
+    figures += plot::save(&differences.figure, &dir)?.len() / 2;
+    drop(lock);
     if !options.quiet {
         println!("{}", report(&differences.summary, &dir, &walls, &differences, figures));
     }

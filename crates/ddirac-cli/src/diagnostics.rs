@@ -1,12 +1,16 @@
-//! Error types of the command line, rendered by miette.
+//! Error types of the command line, rendered by miette, and the exit status of each.
 //!
 //! Everything that concerns a value of the spec is a [`SpecError`]: it carries the spec text (after
 //! `--set` overrides) and labelled spans, so the report quotes the offending lines.
+//!
+//! Each failure has an exit status ([`exit_code`]): the kinds are the constants of [`exit`].
 
 use std::ops::Range;
 use std::path::PathBuf;
 
 use miette::{Diagnostic, LabeledSpan, NamedSource};
+
+use crate::signals;
 
 /// The spec text that diagnostics quote, with a display name.
 #[derive(Debug, Clone)]
@@ -70,6 +74,42 @@ impl SpecError {
     }
 }
 
+/// The exit statuses of `ddirac` besides 0 (success) and 128 + n (stopped by signal n, see
+/// [`signals::Signal::exit_code`]); `ddirac --help` and the README list them too.
+pub mod exit {
+    /// Any failure not classified below.
+    pub const OTHER: u8 = 1;
+    /// The spec or the command line is wrong (clap's status for usage errors, too).
+    pub const SPEC: u8 = 2;
+    /// The integration failed.
+    pub const NUMERICAL: u8 = 3;
+    /// A file cannot be read or written, or the output directory is in use by another run.
+    pub const IO: u8 = 4;
+}
+
+/// The exit status of a failure: that of the first error of a known kind in its chain.
+pub fn exit_code(report: &miette::Report) -> u8 {
+    use crate::plot::ToolError;
+    for error in report.chain() {
+        if let Some(e) = error.downcast_ref::<CliError>() {
+            return e.exit_code();
+        }
+        if error.is::<SpecError>() {
+            return exit::SPEC;
+        }
+        if let Some(e) = error.downcast_ref::<signals::Interrupted>() {
+            return e.signal.exit_code();
+        }
+        if let Some(e) = error.downcast_ref::<ToolError>() {
+            return match e {
+                ToolError::Usage { .. } => exit::SPEC,
+                _ => exit::IO,
+            };
+        }
+    }
+    exit::OTHER
+}
+
 /// Everything the command line reports as a failure.
 #[derive(Debug, thiserror::Error, Diagnostic)]
 pub enum CliError {
@@ -103,14 +143,67 @@ pub enum CliError {
     #[error("the integration failed")]
     #[diagnostic(code(ddirac::integration))]
     Integration(#[source] ddirac::Error),
-    /// Writing the output files failed.
-    #[error("cannot write the output in `{}`", dir.display())]
+    /// The integration stopped, at a place the spec can point to.
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    IntegrationAt(Box<SpecError>),
+    /// Writing an output file failed.
+    #[error("cannot write `{}`", path.display())]
     #[diagnostic(code(ddirac::output))]
     Output {
-        /// The output directory.
-        dir: PathBuf,
+        /// The file or directory the failed operation concerned.
+        path: PathBuf,
         /// Why.
         #[source]
         source: std::io::Error,
     },
+    /// The output directory names a file.
+    #[error("the output directory `{}` is not a directory: `{}` is a file", dir.display(), file.display())]
+    #[diagnostic(
+        code(ddirac::output),
+        help("give a directory with `--out DIR` or `output.directory`; it is created if it does not exist")
+    )]
+    NotADirectory {
+        /// The output directory asked for.
+        dir: PathBuf,
+        /// The file in its place (the directory itself or one above it).
+        file: PathBuf,
+    },
+    /// Another run holds the output directory.
+    #[error("the output directory `{}` is in use by another ddirac run ({holder})", dir.display())]
+    #[diagnostic(
+        code(ddirac::busy),
+        help(
+            "wait for that run to end, or give this one a directory of its own with `--out DIR`; the lock of a \
+             run that no longer exists is taken over without asking"
+        )
+    )]
+    Busy {
+        /// The output directory.
+        dir: PathBuf,
+        /// The other run: process id, command, start.
+        holder: String,
+    },
+    /// A signal stopped the run.
+    #[error(transparent)]
+    #[diagnostic(code(ddirac::interrupted))]
+    Interrupted(#[from] signals::Interrupted),
+}
+
+impl CliError {
+    /// The exit status of this failure (see [`exit`]).
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Self::Set { .. } | Self::Spec(_) => exit::SPEC,
+            Self::Integration(_) | Self::IntegrationAt(_) => exit::NUMERICAL,
+            Self::Read { .. } | Self::Output { .. } | Self::NotADirectory { .. } | Self::Busy { .. } => exit::IO,
+            Self::Interrupted(e) => e.signal.exit_code(),
+        }
+    }
+}
+
+impl From<crate::output::FileError> for CliError {
+    fn from(e: crate::output::FileError) -> Self {
+        Self::Output { path: e.path, source: e.source }
+    }
 }

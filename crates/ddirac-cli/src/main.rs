@@ -15,6 +15,9 @@ mod check;
 mod compare;
 mod convergence;
 mod diagnostics;
+mod estimate;
+mod lock;
+mod manifest;
 mod npy;
 mod output;
 mod overrides;
@@ -22,6 +25,8 @@ mod plot;
 mod progress;
 mod report;
 mod run;
+mod run_dir;
+mod signals;
 mod spec;
 
 use std::path::PathBuf;
@@ -31,8 +36,12 @@ use clap::{Args, Parser, Subcommand};
 
 /// Structure-preserving integrators for Lagrangian systems with abelian symmetry, after
 /// "Discrete Dirac reduction of implicit Lagrangian systems with abelian symmetry groups".
+///
+/// A run is described by a TOML spec: a built-in system (`ddirac systems`) or a Lagrangian written
+/// as an expression, the method (rule, variant, reduced or not), the time grid, the initial data and
+/// the output. See the README and the specs in examples/.
 #[derive(Debug, Parser)]
-#[command(name = "ddirac", version, about)]
+#[command(name = "ddirac", version, after_help = AFTER_HELP)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -61,9 +70,38 @@ struct SpecTarget {
     quiet: bool,
 }
 
+/// Examples and exit statuses, after the help of `ddirac`.
+const AFTER_HELP: &str = "\
+Examples:
+  ddirac run examples/double_spherical_pendulum.toml
+  ddirac run examples/charged_particle.toml --set method.reduced=false --out out/unreduced
+  ddirac check examples/point_vortices.toml
+  ddirac convergence examples/charged_particle.toml --steps 10,50,100,200
+  ddirac plot out/double_spherical_pendulum
+
+Exit status:
+  0        success
+  2        the spec or the command line is wrong (also: `check` finds that a run would be refused)
+  3        the integration failed (Newton's method, a non-finite state)
+  4        a file cannot be read or written, or the output directory is in use by another run
+  128 + n  stopped by signal n: 130 SIGINT, 143 SIGTERM, 129 SIGHUP (nothing is written)
+  1        any other failure";
+
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Integrate the problem of a spec file; writes trajectory.csv and summary.json.
+    ///
+    /// The output directory (`--out`, else `output.directory`, else out/<spec file stem>) is locked
+    /// for the run (`DIR/.ddirac.lock`: a second run into it fails at once, naming this one). The
+    /// files are written aside and moved in only when the run succeeds, replacing those of the
+    /// earlier run in the directory as a set (listed in `DIR/.ddirac-files`); a failed or interrupted
+    /// run leaves the directory as it was. A run that would write more than 1 GB says so first; one
+    /// that would not fit on the disk is refused (thin it with `output.every`).
+    #[command(after_help = "Examples:
+  ddirac run examples/double_spherical_pendulum.toml
+  ddirac run examples/charged_particle.toml --out out/cp --set time.steps=1000 --set output.every=10
+  ddirac run examples/charged_particle.toml --format csv,npy --set output.plots=true
+  ddirac run examples/double_spherical_pendulum.toml --compare --out out/compare")]
     Run {
         #[command(flatten)]
         target: SpecTarget,
@@ -78,6 +116,8 @@ enum Command {
     },
     /// Run a spec with several step counts over its duration and tabulate the error and the
     /// observed order; writes convergence.csv and a log-log figure.
+    #[command(after_help = "Example:
+  ddirac convergence examples/charged_particle.toml --steps 10,50,100,200 --out out/convergence")]
     Convergence {
         #[command(flatten)]
         target: SpecTarget,
@@ -87,6 +127,8 @@ enum Command {
         steps: Vec<u64>,
     },
     /// Draw the figures (PNG and SVG) of a finished run from DIR/trajectory.csv and DIR/summary.json.
+    #[command(after_help = "Example:
+  ddirac run examples/kepler.toml --out out/kepler && ddirac plot out/kepler")]
     Plot {
         /// The output directory of `ddirac run`.
         dir: PathBuf,
@@ -96,19 +138,30 @@ enum Command {
     },
     /// Check a spec without integrating: invariance of L_d, connection axioms, Legendre rank and the
     /// primary constraint; exits non-zero when a run of the spec's method would be refused.
+    #[command(after_help = "Examples:
+  ddirac check examples/point_vortices.toml
+  ddirac check examples/heavy_top.toml --set method.reduced=true")]
     Check {
         #[command(flatten)]
         input: SpecInput,
     },
     /// List the built-in systems with their coordinates and default parameters.
+    #[command(after_help = "Example:
+  ddirac systems")]
     Systems,
     /// Time the engine against its alternatives side by side in one process (contenders alternating
     /// round by round) and print the time ratios with their spread over the rounds.
+    #[command(after_help = "Examples:
+  ddirac bench --quick
+  ddirac bench --only charged-particle,expression --rounds 25 --json bench.json")]
     Bench(bench::Options),
 }
 
 fn main() -> ExitCode {
     let command = Cli::parse().command;
+    if matches!(command, Command::Run { .. } | Command::Convergence { .. }) {
+        signals::install();
+    }
     // Long messages stay on one line, so that they can be searched for in logs. A report takes its
     // handler when it is made, so the hook is set before any command runs.
     let _ = miette::set_hook(Box::new(|_| {
@@ -140,7 +193,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("{error:?}");
-            ExitCode::FAILURE
+            ExitCode::from(diagnostics::exit_code(&error))
         }
     }
 }

@@ -1,5 +1,6 @@
 //! `ddirac run`: reads the spec, applies `--set`, validates, integrates while streaming rows to
-//! `trajectory.csv`, writes `summary.json`, and commits both files only on success.
+//! `trajectory.csv`, writes `summary.json` (and the figures), and commits the files only on
+//! success, replacing those of the earlier run in the directory as a set (see [`RunDir`]).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -8,8 +9,10 @@ use ddirac::Role;
 
 use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
+use crate::plot::ToolError;
 use crate::progress::Progress;
-use crate::{overrides, plot, report, spec};
+use crate::run_dir::RunDir;
+use crate::{estimate, lock, overrides, plot, report, signals, spec};
 
 /// Options of `ddirac run`.
 pub struct RunOptions {
@@ -33,21 +36,14 @@ pub fn run(options: &RunOptions) -> Result<(), CliError> {
     let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
 
     let dir = output_dir(options.out.as_deref(), &plan, path);
-    let created = !dir.exists();
+    estimate::check(&source, &spec, &plan, formats, &dir, 1, options.quiet)?;
+    let plots = spec.output.plots.as_ref().is_some_and(|p| *p.get_ref());
     let mut progress = Progress::new(plan.problem.steps as u64, options.quiet);
-    let result = write_run(&source, &plan, path, &dir, formats, started, &mut progress);
+    let result = write_run(&source, &plan, path, &dir, formats, plots, started, &mut progress);
     progress.finish();
-    if result.is_err() && created {
-        let _ = std::fs::remove_dir(&dir);
-    }
-    let (_, mut summary_text) = result?;
-    if spec.output.plots.as_ref().is_some_and(|p| *p.get_ref()) {
-        let figures = plot::plot_run(&dir)
-            .map_err(|e| CliError::Output { dir: dir.clone(), source: std::io::Error::other(e) })?;
-        summary_text.push_str(&format!("\n  figures          {} (PNG and SVG)", figures.len() / 2));
-    }
+    let finished = result?;
     if !options.quiet {
-        println!("{summary_text}");
+        println!("{}", finished.text);
     }
     Ok(())
 }
@@ -89,52 +85,102 @@ pub fn output_dir(out: Option<&Path>, plan: &spec::Plan, spec: &Path) -> PathBuf
     }
 }
 
-/// Integrates and writes the output files, reporting each row to `progress`; returns the summary
-/// and its human text.
+/// What [`write_run`] did.
+pub struct Finished {
+    /// The run's summary.
+    pub summary: ddirac::Summary,
+    /// Its human text.
+    pub text: String,
+    /// The number of figures drawn (each as PNG and SVG).
+    pub figures: usize,
+}
+
+/// Integrates and writes the output files (and the figures, if `plots`) into `dir`, which the run
+/// owns meanwhile; reports each row to `progress`.
+#[allow(clippy::too_many_arguments)]
 pub fn write_run(
     source: &SpecSource,
     plan: &spec::Plan,
     spec: &Path,
     dir: &Path,
     formats: output::Formats,
+    plots: bool,
     started: Instant,
     progress: &mut Progress,
-) -> Result<(ddirac::Summary, String), CliError> {
-    let io = |source| CliError::Output { dir: dir.to_owned(), source };
-    std::fs::create_dir_all(dir).map_err(io)?;
+) -> Result<Finished, CliError> {
+    let run_dir = RunDir::open(dir, &lock::command_line())?;
+    let staging = run_dir.staging();
     let coordinates = plan.system.coordinates();
     let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
     let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
-    let mut trajectory = Trajectory::create(dir, &names, &group, formats).map_err(io)?;
+    let mut trajectory = Trajectory::create(staging, &names, &group, formats)?;
     let summary = plan
         .system
         .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| {
             progress.update(row.k);
+            signals::check(Some(row.k))?;
             Ok(trajectory.write(row)?)
         })
         .map_err(|e| library_error(source, plan, dir, e))?;
     report::print_warnings(&summary.warnings);
-    let mut staged = trajectory.finish().map_err(io)?;
+    let mut files = trajectory.finish()?;
     let total = started.elapsed().as_secs_f64();
     let json = report::summary_json(plan, &summary, spec, total);
-    let summary_file = output::json(dir, "summary.json", &json).map_err(io)?;
-    staged.push(summary_file);
-    output::commit(staged).map_err(io)?;
-    let text = report::human(plan, &summary, dir, total);
-    Ok((summary, text))
+    files.push(output::json(staging, "summary.json", &json)?);
+    let mut text = report::human(plan, &summary, dir, total);
+    let mut figures = 0;
+    if plots {
+        let drawn = plot::plot_run(staging).map_err(|e| figure_error(dir, e))?;
+        figures = drawn.len() / 2;
+        files.extend(drawn.iter().filter_map(|p| p.strip_prefix(staging).ok()).map(Path::to_path_buf));
+        text.push_str(&format!("\n  figures          {figures} (PNG and SVG)"));
+    }
+    run_dir.commit(&files)?;
+    Ok(Finished { summary, text, figures })
 }
 
-/// A library error as a diagnostic: pointing at the spec value it concerns when there is one.
-fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddirac::Error) -> CliError {
-    if let ddirac::Error::Output(inner) = error {
-        let source = match inner.downcast::<std::io::Error>() {
-            Ok(io) => *io,
-            Err(other) => std::io::Error::other(other),
-        };
-        return CliError::Output { dir: dir.to_owned(), source };
+/// A figure that cannot be drawn in `dir`, as an output error naming the file.
+fn figure_error(dir: &Path, error: ToolError) -> CliError {
+    match error {
+        ToolError::Write { path, source } => CliError::Output { path, source },
+        other => CliError::Output { path: dir.to_owned(), source: std::io::Error::other(other) },
     }
-    match plan.spans.diagnostic(source, &error) {
-        Some(diagnostic) => diagnostic.into(),
-        None => CliError::Integration(error),
+}
+
+/// A library error as a diagnostic: pointing at the spec value it concerns when there is one. A
+/// numerical failure stays one ([`CliError::Integration`] or [`CliError::IntegrationAt`]).
+fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddirac::Error) -> CliError {
+    use ddirac::Error as E;
+    if let E::Output(inner) = error {
+        let inner = match inner.downcast::<signals::Interrupted>() {
+            Ok(interrupted) => return CliError::Interrupted(*interrupted),
+            Err(other) => other,
+        };
+        return match inner.downcast::<output::FileError>() {
+            Ok(file) => (*file).into(),
+            Err(other) => CliError::Output { path: dir.to_owned(), source: std::io::Error::other(other) },
+        };
+    }
+    if let E::Interrupted { step, .. } = error {
+        if let Err(interrupted) = signals::check(Some(step)) {
+            return CliError::Interrupted(interrupted);
+        }
+    }
+    let numerical = !matches!(
+        error,
+        E::Size { .. }
+            | E::NonFinite { .. }
+            | E::Invalid { .. }
+            | E::NotInvariant { .. }
+            | E::NotPeriodic { .. }
+            | E::Undecided { .. }
+            | E::OffPrimaryConstraint { .. }
+            | E::NoSymmetry
+            | E::NotCompiled(_)
+    );
+    match (plan.spans.diagnostic(source, &error), numerical) {
+        (Some(diagnostic), true) => CliError::IntegrationAt(diagnostic),
+        (Some(diagnostic), false) => diagnostic.into(),
+        (None, _) => CliError::Integration(error),
     }
 }

@@ -113,6 +113,9 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
 /// `ddirac plot DIR`: draws the figures of a finished run and lists them.
 pub fn command(dir: &Path, quiet: bool) -> Result<(), ToolError> {
     let written = plot_run(dir)?;
+    // The figures belong to the run whose data they show: the next run into `dir` replaces them.
+    let list = dir.join(crate::manifest::NAME);
+    crate::manifest::record(dir, &written).map_err(|source| ToolError::Write { path: list, source })?;
     if !quiet {
         println!("{} figures in {}:", written.len() / 2, dir.display());
         for path in written.iter().filter(|p| p.extension().is_some_and(|e| e == "png")) {

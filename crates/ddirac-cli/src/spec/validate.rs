@@ -183,6 +183,8 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
         built_in: matches!(spec.system.get_ref(), SystemRef::BuiltIn(_)),
         ..Spans::default()
     };
+    // The span of each coordinate's name in a `[system]` table.
+    let mut declared: Vec<(String, Range<usize>)> = vec![];
     let (name, system, parameters) = match spec.system.get_ref() {
         SystemRef::BuiltIn(name) => {
             let built_in = built_in(source, name, spec.system.span())?;
@@ -201,6 +203,7 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
                 .map(|list| list.get_ref().iter().map(|a| (a.get_ref().clone(), a.span())).collect())
                 .unwrap_or_default();
             let coordinates = built.system.coordinates();
+            declared.clone_from(&built.coordinates);
             spans.group = built
                 .coordinates
                 .into_iter()
@@ -210,6 +213,7 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
         }
     };
     let coordinates = system.coordinates();
+    distinct_columns(source, &coordinates, &declared, spec.system.span())?;
     let method = method(source, spec, &coordinates, &mut spans)?;
     let (step, steps) = time::grid(source, &spec.time)?;
 
@@ -241,6 +245,49 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
         directory,
         spans,
     })
+}
+
+/// Refuses a coordinate whose name is that of another output column: `t`, `energy`,
+/// `discrete_energy`, `p_<coordinate>` or `momentum_<group coordinate>`. The error points at the
+/// coordinate's name in `shape`/`group` (at `system` for a built-in system), and at the coordinate
+/// the other column belongs to.
+fn distinct_columns(
+    source: &SpecSource,
+    coordinates: &[Coordinate],
+    declared: &[(String, Range<usize>)],
+    system: Range<usize>,
+) -> Result<(), Box<SpecError>> {
+    let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
+    let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
+    let columns = crate::output::columns(&names, &group);
+    let n = names.len();
+    let span_of = |name: &str| declared.iter().find(|(d, _)| d == name).map_or(system.clone(), |(_, s)| s.clone());
+    for (i, name) in names.iter().enumerate() {
+        let Some(j) = columns.iter().enumerate().position(|(j, c)| j != i + 1 && c == name) else { continue };
+        let (what, owner) = match j {
+            0 => ("the time column `t`".to_owned(), None),
+            j if (n + 1..=2 * n).contains(&j) => {
+                (format!("the momentum column of the coordinate `{}`", names[j - n - 1]), Some(&names[j - n - 1]))
+            }
+            j if j == 2 * n + 1 => ("the column `energy` (the Hamiltonian H)".to_owned(), None),
+            j if j == 2 * n + 2 => ("the column `discrete_energy` (L_d)".to_owned(), None),
+            j => {
+                let g = &group[j - 2 * n - 3];
+                (format!("the momentum-map column of the group coordinate `{g}`"), Some(g))
+            }
+        };
+        let mut labels = vec![LabeledSpan::new_with_span(Some(format!("`{name}` is also {what}")), span_of(name))];
+        if let Some((owner, span)) = owner.and_then(|o| declared.iter().find(|(d, _)| d == o)) {
+            labels.push(LabeledSpan::new_with_span(Some(format!("the coordinate `{owner}`")), span.clone()));
+        }
+        return Err(source
+            .error_with(format!("the coordinate `{name}` has the name of another output column: {what}"), labels)
+            .with_help(
+                "rename the coordinate: trajectory.csv (and npy/) have the columns t, the coordinates, p_<coordinate>, \
+                 energy, discrete_energy and momentum_<group coordinate>",
+            ));
+    }
+    Ok(())
 }
 
 fn built_in(source: &SpecSource, name: &str, span: Range<usize>) -> Result<&'static BuiltIn, Box<SpecError>> {
