@@ -46,7 +46,7 @@ impl Finding {
 
     /// Whether the test was decided and failed with `tolerance`.
     pub fn fails(&self, tolerance: f64) -> bool {
-        self.decided() && !(self.deviation <= tolerance)
+        self.decided() && !self.holds(tolerance)
     }
 }
 

@@ -124,8 +124,12 @@ struct Excursion {
 #[derive(Debug, Clone)]
 pub(crate) struct Monitor {
     options: EnergyJump,
-    previous: Option<f64>,
+    /// E_{k−1} (NaN before the first step).
+    previous: f64,
+    /// The energy scale, and `threshold` times it.
     scale: f64,
+    threshold: f64,
+    /// Sum and number of the ordinary changes so far.
     sum: f64,
     count: usize,
     excursion: Option<Excursion>,
@@ -133,7 +137,8 @@ pub(crate) struct Monitor {
 
 impl Monitor {
     pub fn new(options: EnergyJump) -> Self {
-        Self { options, previous: None, scale: 0.0, sum: 0.0, count: 0, excursion: None }
+        let (previous, scale, threshold) = (f64::NAN, 0.0, 0.0);
+        Self { options, previous, scale, threshold, sum: 0.0, count: 0, excursion: None }
     }
 
     fn typical(&self) -> f64 {
@@ -142,13 +147,36 @@ impl Monitor {
 
     /// Takes step k's energy `energy` (at `at` = (k, t_k)) and the size |⟨p, Δq/h⟩| of its kinetic
     /// part; returns a jump when an excursion ends away from its level.
+    #[inline]
     pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64) -> Option<Jump> {
-        let Some(before) = self.previous.replace(energy) else {
-            self.scale = energy.abs().max(kinetic);
-            return None;
-        };
+        let before = std::mem::replace(&mut self.previous, energy);
         let change = (energy - before).abs();
-        let (typical, threshold) = (self.typical(), self.options.threshold * self.scale);
+        // An ordinary step, by the test below written without a division.
+        let ordinary = change <= self.threshold || change * self.count as f64 <= RATIO * self.sum;
+        if ordinary && self.excursion.is_none() && self.count >= WARM_UP {
+            self.sum += change;
+            self.count += 1;
+            if energy.abs().max(kinetic) > self.scale {
+                self.rescale(energy.abs().max(kinetic));
+            }
+            return None;
+        }
+        self.unusual(at, energy, before, change, kinetic)
+    }
+
+    fn rescale(&mut self, scale: f64) {
+        self.scale = scale;
+        self.threshold = self.options.threshold * scale;
+    }
+
+    /// [`Monitor::push`] for the first steps, an excursion, or a step that may start one.
+    #[cold]
+    fn unusual(&mut self, at: (usize, f64), energy: f64, before: f64, change: f64, kinetic: f64) -> Option<Jump> {
+        if before.is_nan() && self.count == 0 && self.excursion.is_none() {
+            self.rescale(energy.abs().max(kinetic));
+            return None;
+        }
+        let (typical, threshold) = (self.typical(), self.threshold);
         if let Some(excursion) = &mut self.excursion {
             if (energy - excursion.level).abs() <= threshold {
                 self.excursion = None;
@@ -173,7 +201,7 @@ impl Monitor {
         } else {
             self.sum += change;
             self.count += 1;
-            self.scale = self.scale.max(energy.abs()).max(kinetic);
+            self.rescale(self.scale.max(energy.abs()).max(kinetic));
         }
         None
     }
@@ -182,8 +210,8 @@ impl Monitor {
     /// from its level.
     pub fn finish(&mut self) -> Option<Jump> {
         let excursion = self.excursion.take()?;
-        let last = self.previous?;
-        let jumped = !((last - excursion.level).abs() <= self.options.threshold * self.scale);
+        let last = self.previous;
+        let jumped = (last - excursion.level).abs() > self.threshold || last.is_nan();
         jumped.then(|| self.jump(excursion, last))
     }
 

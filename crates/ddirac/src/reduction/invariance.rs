@@ -51,7 +51,7 @@ pub fn relative_change<const N: usize>(sample: &Sample<N>, moved: f64, shift: f6
 /// `numerator / scale`, with 0/0 = 0 and x/0 = ∞.
 pub(crate) fn ratio(numerator: f64, scale: f64) -> f64 {
     match (numerator, scale) {
-        (n, _) if n == 0.0 => 0.0,
+        (0.0, _) => 0.0,
         (n, s) if s > 0.0 => n / s,
         _ => f64::INFINITY,
     }

@@ -153,6 +153,9 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
     }
 
     fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
+        if self.flat {
+            return *wm;
+        }
         let mut p = *wm;
         for (i, &si) in self.reduction.split.shape.iter().enumerate() {
             p[si] = wm[si] - self.kt_mu(i, wm);
