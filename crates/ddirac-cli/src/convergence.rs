@@ -20,9 +20,11 @@ use std::time::Instant;
 use ddirac::CoordinateKind;
 
 use crate::diagnostics::CliError;
+use crate::lock;
 use crate::plot::{self, Figure, Panel, Scale, Series, ToolError};
 use crate::progress::Progress;
 use crate::run::{self, Loaded};
+use crate::run_dir::RunDir;
 use crate::spec::Plan;
 
 /// Name of the table in the output directory.
@@ -137,6 +139,9 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     // so that h = T/N is the step `ddirac run --set time.steps=N` takes.
     let duration: f64 = format!("{:.14e}", plan.problem.duration()).parse().unwrap_or(plan.problem.duration());
     let kinds: Vec<CoordinateKind> = plan.system.coordinates().iter().map(|c| c.kind).collect();
+    // The output directory is this study's while it lasts; its files replace the earlier ones as a set.
+    let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
+    let run_dir = RunDir::open(&dir, &lock::command_line())?;
 
     let mut progress = Progress::new(steps.iter().sum(), options.quiet);
     let mut outcomes: Vec<Outcome> = vec![];
@@ -173,10 +178,12 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     };
 
     let rows = table(&steps, duration, &outcomes, &reference, &kinds);
-    let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
-    std::fs::create_dir_all(&dir).map_err(|source| ToolError::Write { path: dir.clone(), source })?;
-    write_csv(&dir.join(TABLE), &rows, &reference)?;
-    plot::save(&figure(&plan.name, duration, &rows, &reference), &dir)?;
+    let staging = run_dir.staging().to_owned();
+    write_csv(&staging.join(TABLE), &rows, &reference)?;
+    let figures = plot::save(&figure(&plan.name, duration, &rows, &reference), &staging)?;
+    let mut files = vec![PathBuf::from(TABLE)];
+    files.extend(figures.iter().filter_map(|p| p.strip_prefix(&staging).ok()).map(PathBuf::from));
+    run_dir.commit(&files)?;
     if !options.quiet {
         println!("{}", text(&plan.name, duration, &rows, &reference));
         println!("  table      {}", dir.join(TABLE).display());

@@ -138,14 +138,14 @@ impl CheckReport {
                 if method.check_invariance {
                     return Err(error);
                 }
-                let kind = match error {
-                    Error::NotInvariant { .. } => WarningKind::NotInvariant,
-                    _ => WarningKind::InvarianceUndecided,
+                let (kind, consequence) = match error {
+                    Error::NotInvariant { .. } => (WarningKind::NotInvariant, "is not conserved"),
+                    _ => (WarningKind::InvarianceUndecided, "may not be conserved"),
                 };
                 let message = format!(
-                    "reducing although {error}, because `check_invariance` is off: the reduced equations then \
-                     hold μ constant although the true momentum map is not conserved, so the trajectory and its \
-                     momentum-map drift (zero by construction) do not describe this Lagrangian"
+                    "reducing although {error}, because `check_invariance` is off: the reduced equations hold μ \
+                     constant although the true momentum map {consequence}, so the trajectory and its momentum-map \
+                     drift (zero by construction) may not describe this Lagrangian"
                 );
                 warnings.push(Warning::new(kind, None, message));
             }

@@ -167,7 +167,13 @@ impl Spans {
         if labels.is_empty() {
             return None;
         }
-        let diagnostic = source.error_with(error.to_string(), labels);
+        let message = match error {
+            ddirac::Error::Newton { .. } | ddirac::Error::Diverged { .. } | ddirac::Error::EnergyJump { .. } => {
+                format!("the integration failed: {error}")
+            }
+            _ => error.to_string(),
+        };
+        let diagnostic = source.error_with(message, labels);
         Some(match help {
             Some(help) => diagnostic.with_help(help),
             None => diagnostic,
