@@ -82,7 +82,7 @@ Examples:
 Exit status:
   0        success
   2        the spec or the command line is wrong (also: `check` finds that a run would be refused)
-  3        the integration failed (Newton's method, a non-finite state)
+  3        the integration failed (Newton's method, a non-finite state, an energy jump made an error)
   4        a file cannot be read or written, or the output directory is in use by another run
   128 + n  stopped by signal n: 130 SIGINT, 143 SIGTERM, 129 SIGHUP (nothing is written)
   1        any other failure";
@@ -136,11 +136,9 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
-    /// Check a spec without integrating: invariance of L_d, connection axioms, Legendre rank and the
-    /// primary constraint; exits non-zero when a run of the spec's method would be refused.
-    #[command(after_help = "Examples:
-  ddirac check examples/point_vortices.toml
-  ddirac check examples/heavy_top.toml --set method.reduced=true")]
+    /// Check a spec without integrating: invariance of L_d, 2π-periodicity of the angles, connection
+    /// axioms, Legendre rank and the primary constraint; exits 2 when a run of the spec's method would
+    /// be refused (the verdict and the message a run gives).
     Check {
         #[command(flatten)]
         input: SpecInput,
