@@ -50,6 +50,9 @@ pub use error::{Error, Time};
 pub use integrator::{integrate, solve, OutputError};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;
+/// The scalar trait user Lagrangians are written against (`DualNum<Primitive = f64>`), re-exported so that
+/// a system and the engine always agree on its version.
+pub use num_dual;
 pub use problem::{Differentiation, InitialMomentum, Method, OutputOptions, Problem, Variant};
 pub use reduction::connection::Connection;
 pub use system::{Coordinate, CoordinateKind, Role, Split, System};
