@@ -35,6 +35,7 @@ mod linalg;
 pub mod mechanics;
 pub mod newton;
 pub mod periodicity;
+pub mod prelude;
 mod problem;
 pub mod reduction;
 pub mod sampling;
