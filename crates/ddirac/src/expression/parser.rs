@@ -90,8 +90,7 @@ impl Parser<'_> {
         let (first, first_depth) = self.prefix(nesting)?;
         // The operations read so far at the level of the last operator: `lhs` is their value.
         let mut chain = Chain { first, depth: first_depth, rest: Vec::new() };
-        loop {
-            let Some(token) = self.peek() else { break };
+        while let Some(token) = self.peek() {
             let op = match token.kind {
                 TokenKind::Plus => BinaryOp::Add,
                 TokenKind::Minus => BinaryOp::Sub,
