@@ -8,7 +8,7 @@ use nalgebra::{SMatrix, SVector};
 use num_dual::DualNum;
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
-use crate::compiled::{CompileError, CompiledPair, LinearStep, Traced};
+use crate::compiled::{pair_programs, CompileCost, CompileError, CompiledPair, LinearStep, Traced};
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
@@ -103,6 +103,7 @@ pub(crate) trait Scheme<const N: usize> {
 
 /// Under [`Differentiation::Auto`], runs of fewer steps use dual numbers: tracing and compiling take
 /// about 1 ms for four coordinates (more for many), what compiled steps save over about two thousand.
+/// Longer runs are traced, and compiled if the estimate of [`CompileCost`] says that compiling pays.
 pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 
 /// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
@@ -119,8 +120,9 @@ impl<const N: usize> StepDerivatives<N> {
     /// Compiles the derivatives of `scheme` when `choice` allows it, checking them against dual numbers
     /// at the first step's base and predictor `z` (and the closed-form step, if the equations are
     /// linear, at its solution for the first step's momenta). Under [`Differentiation::Auto`] a
-    /// failure means dual numbers (the reason goes into the path); under [`Differentiation::Compiled`]
-    /// it is an error.
+    /// failure means dual numbers (the reason goes into the path), and so does a run of fewer than
+    /// [`AUTO_MIN_STEPS`] steps or one whose programs would cost more to compile than its steps
+    /// save ([`CompileCost`]); under [`Differentiation::Compiled`] a failure is an error.
     pub fn new(
         scheme: &impl Scheme<N>,
         choice: Differentiation,
@@ -129,15 +131,27 @@ impl<const N: usize> StepDerivatives<N> {
         z: &[f64; N],
         momenta: &[f64; N],
     ) -> Result<(Self, DerivativePath), CompileError> {
+        let dual_numbers = |reason: Option<String>| Ok((Self::Dual, DerivativePath::Dual { reason }));
         if choice == Differentiation::Dual {
-            return Ok((Self::Dual, DerivativePath::Dual { reason: None }));
+            return dual_numbers(None);
         }
         if choice == Differentiation::Auto && steps < AUTO_MIN_STEPS {
-            let reason = format!("{steps} steps: compiling costs more than it saves below {AUTO_MIN_STEPS}");
-            return Ok((Self::Dual, DerivativePath::Dual { reason: Some(reason) }));
+            return dual_numbers(Some(format!(
+                "{steps} steps: compiling costs more than it saves below {AUTO_MIN_STEPS}"
+            )));
         }
         let generating = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| scheme.generating(base, a, b);
-        let compiled = CompiledPair::new(generating, base, z).and_then(|pair| {
+        let programs = match (pair_programs(generating, base, z), choice) {
+            (Ok(programs), _) => programs,
+            (Err(e), Differentiation::Auto) => return dual_numbers(Some(e.to_string())),
+            (Err(e), _) => return Err(e.into()),
+        };
+        if choice == Differentiation::Auto {
+            if let Some(reason) = CompileCost::estimate::<N>(&programs).refusal(steps) {
+                return dual_numbers(Some(reason));
+            }
+        }
+        let compiled = CompiledPair::from_programs(&programs).and_then(|pair| {
             let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
@@ -156,7 +170,7 @@ impl<const N: usize> StepDerivatives<N> {
                 let path = DerivativePath::Compiled { residual, jacobian, closed_form };
                 Ok((Self::Compiled { pair: Box::new(pair), linear: linear.map(Box::new) }, path))
             }
-            (Err(e), Differentiation::Auto) => Ok((Self::Dual, DerivativePath::Dual { reason: Some(e.to_string()) })),
+            (Err(e), Differentiation::Auto) => dual_numbers(Some(e.to_string())),
             (Err(e), _) => Err(e),
         }
     }

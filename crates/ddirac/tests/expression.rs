@@ -427,7 +427,7 @@ fn deep_nesting_is_an_error_not_a_crash() {
     let deep = format!("{}x{}", "(".repeat(5000), ")".repeat(5000));
     assert!(matches!(parse(&deep), Err(SyntaxError::TooDeep { .. })));
     let long = vec!["x"; 5000].join(" + ");
-    assert!(matches!(parse(&long), Err(SyntaxError::TooDeep { .. })));
+    assert_close(scope().compile_expression(&long).unwrap().eval(&AT), 5000.0 * 0.7, 1e-12, "flat sum");
     let fine = vec!["x"; 900].join(" + ");
     assert_close(scope().compile_expression(&fine).unwrap().eval(&AT), 900.0 * 0.7, 1e-13, "long sum");
     let minus = format!("{}x", "-".repeat(999));

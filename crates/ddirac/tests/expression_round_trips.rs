@@ -93,6 +93,7 @@ fn varies(expr: &Expr) -> bool {
         ExprKind::Name(n) => matches!(n.as_str(), "x" | "y" | "z"),
         ExprKind::Unary { operand, .. } => varies(operand),
         ExprKind::Binary { lhs, rhs, .. } => varies(lhs) || varies(rhs),
+        ExprKind::Chain { first, rest } => varies(first) || rest.iter().any(|(_, e)| varies(e)),
         ExprKind::Call { args, .. } => args.iter().any(varies),
     }
 }
@@ -121,6 +122,7 @@ fn evaluate(expr: &Expr, at: &[f64; 3], scale: &mut f64) -> Option<f64> {
                 BinaryOp::Pow => power(a, b, varies(lhs), varies(rhs))?,
             }
         }
+        ExprKind::Chain { .. } => unreachable!("the generated trees nest their operations"),
         ExprKind::Call { name, args, .. } => {
             let a = evaluate(&args[0], at, scale)?;
             let b = match args.get(1) {

@@ -120,7 +120,7 @@ impl Context<'_> {
         }
         let mut labels = vec![];
         if let ExpressionError::Cycle { cycle, .. } = &error {
-            for step in cycle {
+            for step in cycle.iter().take(LONG_LIST) {
                 if let (Some(value), _) = self.locate(&step.origin) {
                     labels.push(self.at(value, step.span.into(), format!("uses `{}`", step.name)));
                 }
@@ -136,6 +136,16 @@ impl Context<'_> {
         if labels.is_empty() {
             labels.push(LabeledSpan::new_with_span(Some("in this system".into()), self.span.clone()));
         }
+        // A label on a long line (a generated Lagrangian) would quote the whole line: it becomes an
+        // excerpt of the line in the message instead.
+        let text = self.source.text();
+        labels.retain(|l| match excerpt(text, l.offset()..l.offset() + l.len(), l.label().unwrap_or("here")) {
+            Some(excerpt) => {
+                message.push_str(&excerpt);
+                false
+            }
+            None => true,
+        });
         let error_help = help(&error, self);
         let report = self.source.error_with(format!("invalid `[system]`: {message}"), labels);
         match error_help {
@@ -143,6 +153,51 @@ impl Context<'_> {
             None => report,
         }
     }
+}
+
+/// Names listed in a hint, at most (a generated system may have thousands of definitions).
+const LONG_LIST: usize = 12;
+
+/// Lines of the spec longer than this many characters are not quoted whole in a report.
+const LONG_LINE: usize = 200;
+
+/// Characters of a long line shown on each side of the start of what a report points at.
+const EXCERPT_SIDE: usize = 40;
+
+/// For `span` on a line of `text` longer than [`LONG_LINE`] characters: the place (line and column, in
+/// characters from 1), `label`, and about 80 characters of the line around the start of `span` with
+/// `^` under the span. `None` for a span on a shorter line.
+///
+/// ```text
+///
+///   at line 3, column 4522 of 92061 characters: here
+///     … + x + x + x + x + x**2 + x + x + x + x + x + …
+///                            ^^
+/// ```
+fn excerpt(text: &str, span: Range<usize>, label: &str) -> Option<String> {
+    let start = span.start.min(text.len());
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    let line = text[line_start..line_end].trim_end_matches('\r');
+    let length = line.chars().count();
+    if length <= LONG_LINE {
+        return None;
+    }
+    let chars: Vec<char> = line.chars().collect();
+    let column = text[line_start..start].chars().count();
+    let width = text[start..span.end.clamp(start, line_start + line.len())].chars().count().max(1);
+    let from = column.saturating_sub(EXCERPT_SIDE);
+    let to = (column + width.max(EXCERPT_SIDE)).min(length);
+    let before = if from > 0 { "…" } else { "" };
+    let after = if to < length { "…" } else { "" };
+    let shown: String = chars[from..to].iter().collect();
+    let marks = "^".repeat(width.min(to - column).max(1));
+    let number = text[..line_start].matches('\n').count() + 1;
+    Some(format!(
+        "\n\n  at line {number}, column {} of {length} characters: {label}\n    {before}{shown}{after}\n    {}{marks}",
+        column + 1,
+        " ".repeat(before.chars().count() + column - from),
+    ))
 }
 
 fn label(error: &ExpressionError) -> String {
@@ -160,7 +215,11 @@ fn label(error: &ExpressionError) -> String {
 }
 
 fn help(error: &ExpressionError, context: &Context<'_>) -> Option<String> {
-    let list = |names: Vec<String>| if names.is_empty() { "none".to_owned() } else { names.join(", ") };
+    let list = |names: Vec<String>| match names.len() {
+        0 => "none".to_owned(),
+        n if n > LONG_LIST => format!("{}, … and {} more", names[..LONG_LIST].join(", "), n - LONG_LIST),
+        _ => names.join(", "),
+    };
     let coordinates: Vec<String> = context.declared.coordinates.iter().map(|c| c.name.clone()).collect();
     match error {
         ExpressionError::UnknownName { origin: Origin::ExactSolution(_), .. } => {

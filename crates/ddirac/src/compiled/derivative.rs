@@ -35,6 +35,9 @@ pub struct PairPrograms {
     pub first: Program,
     /// f, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b (row-major).
     pub mixed: Program,
+    /// The operations of f itself as traced (with a as an input, before differentiation): what one
+    /// evaluation of f by dual numbers computes.
+    pub operations: usize,
 }
 
 /// Traces f(base, a, b) at (base, 0, b) and returns its programs.
@@ -55,7 +58,7 @@ pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> 
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
-    let PairGraph { mut graph, value, da, db } = pair_graph(f, base, b)?;
+    let PairGraph { mut graph, value, da, db, operations } = pair_graph(f, base, b)?;
     let columns: Vec<Vec<Node>> = (0..N)
         .map(|j| match graph.input_node(N + j) {
             Some(b_j) => directional(&mut graph, b_j, &da),
@@ -66,7 +69,7 @@ where
     let mut outputs = roots.clone();
     outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
     check_finite(&graph, &outputs, N)?;
-    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs) })
+    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs), operations })
 }
 
 /// A pair function's value and gradient at a = 0, as nodes of a graph whose inputs are (base, b).
@@ -75,6 +78,8 @@ pub(super) struct PairGraph {
     pub value: Node,
     pub da: Vec<Node>,
     pub db: Vec<Node>,
+    /// The operations of f as traced ([`PairPrograms::operations`]).
+    pub operations: usize,
 }
 
 /// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above.
@@ -87,13 +92,14 @@ where
         let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
         f(&block(0), &block(1), &block(2))
     })?;
+    let operations = graph.operations(y);
     // The trace's inputs are its first nodes: base, a, b.
     let wrt: Vec<Node> = (N..3 * N).map(|k| k as Node).collect();
     let mut roots = vec![y];
     roots.extend(gradient(&mut graph, y, &wrt));
     let a_is_zero: Vec<Option<f64>> = (0..3 * N).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
     let (graph, roots) = graph.substitute(&roots, &a_is_zero);
-    Ok(PairGraph { graph, value: roots[0], da: roots[1..=N].to_vec(), db: roots[1 + N..].to_vec() })
+    Ok(PairGraph { graph, value: roots[0], da: roots[1..=N].to_vec(), db: roots[1 + N..].to_vec(), operations })
 }
 
 /// `NotCompiled::NonFinite` unless every output is finite at the graph's build point; outputs are

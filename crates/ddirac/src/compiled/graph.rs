@@ -371,6 +371,14 @@ impl Graph {
         roots.iter().map(|&r| map[r as usize]).collect()
     }
 
+    /// How many operations (nodes that are neither inputs nor constants) `root` reads, itself
+    /// included.
+    pub(super) fn operations(&self, root: Node) -> usize {
+        let live = self.live(&[root]);
+        let operation = |n: usize| !matches!(self.nodes[n], Instruction::Input(_) | Instruction::Const(_));
+        (0..self.len()).filter(|&n| live[n] && operation(n)).count()
+    }
+
     /// Whether any of `roots` reads any of the nodes `sources`, directly or not.
     pub(super) fn reads(&self, roots: &[Node], sources: &[Node]) -> bool {
         let live = self.live(roots);

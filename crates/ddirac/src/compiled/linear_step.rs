@@ -125,7 +125,7 @@ fn step_program<const N: usize>(
     advances: &[bool; N],
     eliminable: &[bool; N],
 ) -> Option<Program> {
-    let PairGraph { mut graph, value, da, db } = pair;
+    let PairGraph { mut graph, value, da, db, .. } = pair;
     let g = &mut graph;
     // Momenta that do not advance (μ) are conserved exactly: constants of the run.
     let m: Vec<Node> = (0..N)

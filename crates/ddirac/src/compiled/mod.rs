@@ -1,6 +1,7 @@
 //! Compiled derivatives: a Lagrangian traced once into a graph of operations, differentiated
 //! symbolically, simplified, and turned into straight-line native code.
 
+mod cost;
 mod derivative;
 mod graph;
 pub mod jit;
@@ -9,6 +10,7 @@ mod pair;
 pub mod program;
 pub mod trace;
 
+pub use cost::CompileCost;
 pub use derivative::{pair_programs, PairPrograms};
 pub use jit::{JitError, NativeProgram};
 pub use linear_step::{LinearSolution, LinearStep};

@@ -10,7 +10,7 @@ use std::cell::RefCell;
 
 use nalgebra::{SMatrix, SVector};
 
-use super::{pair_programs, JitError, NativeProgram, NotCompiled, PairPrograms, Traced};
+use super::{pair_programs, JitError, NativeProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
 
 /// Why derivatives could not be compiled.
@@ -67,11 +67,25 @@ impl<const N: usize> CompiledPair<N> {
     where
         F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
     {
-        let PairPrograms { first, mixed } = pair_programs(f, base, b)?;
+        Self::from_programs(&pair_programs(f, base, b)?)
+    }
+
+    /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`]); programs
+    /// with other numbers of inputs or outputs are an error.
+    pub fn from_programs(programs: &PairPrograms) -> Result<Self, CompileError> {
+        let PairPrograms { first, mixed, .. } = programs;
+        let shape = |p: &Program| (p.inputs, p.outputs.len());
+        if shape(first) != (2 * N, 1 + 2 * N) || shape(mixed) != (2 * N, 1 + 2 * N + N * N) {
+            return Err(CompileError::Native(format!(
+                "the programs do not compute a pair function of {N} coordinates (inputs and outputs {:?} and {:?})",
+                shape(first),
+                shape(mixed)
+            )));
+        }
         let instructions = (first.instructions.len(), mixed.instructions.len());
         Ok(Self {
-            first: NativeProgram::compile(&first)?,
-            mixed: NativeProgram::compile(&mixed)?,
+            first: NativeProgram::compile(first)?,
+            mixed: NativeProgram::compile(mixed)?,
             instructions,
             buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N] }),
         })

@@ -5,11 +5,11 @@ use std::collections::HashMap;
 use super::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 use super::functions::{Binary, Function, Unary, FUNCTIONS};
 use super::graph::{Graph, Operand};
-use super::{emit, parse, CycleStep, ExpressionError, Origin, Program, Span};
+use super::{definitions, emit, parse, ExpressionError, Origin, Program, Span};
 
 /// What a name stands for.
 #[derive(Debug, Clone, PartialEq)]
-enum Entry {
+pub(super) enum Entry {
     Variable(usize),
     Constant(f64),
     Definition(String),
@@ -30,9 +30,9 @@ enum Entry {
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct Scope {
-    entries: HashMap<String, Entry>,
+    pub(super) entries: HashMap<String, Entry>,
     /// Declaration order, for deterministic suggestions and definition checks.
-    order: Vec<String>,
+    pub(super) order: Vec<String>,
     variables: usize,
 }
 
@@ -82,11 +82,10 @@ impl Scope {
     /// the expression uses it or not.
     pub fn compile(&self, origin: Origin, source: &str) -> Result<Program, ExpressionError> {
         let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
-        let mut compiler = Compiler { scope: self, graph: Graph::default(), done: HashMap::new(), stack: Vec::new() };
-        for name in &self.order {
-            if let Some(Entry::Definition(source)) = self.entries.get(name) {
-                compiler.definition(name, source, None)?;
-            }
+        let mut compiler = Compiler { scope: self, graph: Graph::default(), done: HashMap::new() };
+        for (name, definition) in definitions::in_order(self)? {
+            let operand = compiler.lower(&definition, &Origin::Definition(name.to_owned()))?;
+            compiler.done.insert(name, operand);
         }
         let result = compiler.lower(&expr, &origin)?;
         Ok(emit::program(&compiler.graph.nodes, result, self.variables))
@@ -101,40 +100,12 @@ impl Scope {
 struct Compiler<'s> {
     scope: &'s Scope,
     graph: Graph,
-    /// Definitions already lowered.
+    /// Definitions already lowered: all those an expression being lowered uses
+    /// ([`definitions::in_order`]).
     done: HashMap<&'s str, Operand>,
-    /// Definitions being lowered, outermost first, each with the reference that led to it.
-    stack: Vec<(&'s str, Option<CycleStep>)>,
 }
 
-impl<'s> Compiler<'s> {
-    fn definition(
-        &mut self,
-        name: &'s str,
-        source: &'s str,
-        reference: Option<CycleStep>,
-    ) -> Result<Operand, ExpressionError> {
-        if let Some(&operand) = self.done.get(name) {
-            return Ok(operand);
-        }
-        if let Some(start) = self.stack.iter().position(|(n, _)| *n == name) {
-            let cycle: Vec<CycleStep> =
-                self.stack[start + 1..].iter().filter_map(|(_, r)| r.clone()).chain(reference).collect();
-            let (origin, span) = match cycle.last() {
-                Some(last) => (last.origin.clone(), last.span),
-                None => (Origin::Definition(name.to_owned()), Span::default()),
-            };
-            return Err(ExpressionError::Cycle { origin, span, cycle });
-        }
-        let origin = Origin::Definition(name.to_owned());
-        let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
-        self.stack.push((name, reference));
-        let operand = self.lower(&expr, &origin)?;
-        self.stack.pop();
-        self.done.insert(name, operand);
-        Ok(operand)
-    }
-
+impl Compiler<'_> {
     fn lower(&mut self, expr: &Expr, origin: &Origin) -> Result<Operand, ExpressionError> {
         Ok(match &expr.kind {
             ExprKind::Number(value) => Operand::Const(*value),
@@ -148,14 +119,15 @@ impl<'s> Compiler<'s> {
             }
             ExprKind::Binary { op, lhs, rhs } => {
                 let (a, b) = (self.lower(lhs, origin)?, self.lower(rhs, origin)?);
-                let op = match op {
-                    BinaryOp::Add => Binary::Add,
-                    BinaryOp::Sub => Binary::Sub,
-                    BinaryOp::Mul => Binary::Mul,
-                    BinaryOp::Div => Binary::Div,
-                    BinaryOp::Pow => Binary::Pow,
-                };
-                self.graph.binary(op, a, b)
+                self.graph.binary(binary(*op), a, b)
+            }
+            ExprKind::Chain { first, rest } => {
+                let mut value = self.lower(first, origin)?;
+                for (op, operand) in rest {
+                    let b = self.lower(operand, origin)?;
+                    value = self.graph.binary(binary(*op), value, b);
+                }
+                value
             }
             ExprKind::Call { name, name_span, args } => {
                 let Some(function) = Function::named(name) else {
@@ -194,9 +166,8 @@ impl<'s> Compiler<'s> {
         match scope.entries.get_key_value(name) {
             Some((_, Entry::Variable(index))) => Ok(self.graph.var(*index)),
             Some((_, Entry::Constant(value))) => Ok(Operand::Const(*value)),
-            Some((key, Entry::Definition(source))) => {
-                let reference = CycleStep { origin: origin.clone(), name: name.to_owned(), span };
-                self.definition(key, source, Some(reference))
+            Some((key, Entry::Definition(_))) => {
+                Ok(*self.done.get(key.as_str()).expect("definitions are lowered after the definitions they use"))
             }
             Some((_, Entry::Unavailable(reason))) => Err(ExpressionError::Unavailable {
                 origin: origin.clone(),
@@ -220,13 +191,26 @@ impl<'s> Compiler<'s> {
     }
 }
 
-/// The candidate closest to `name` by edit distance, if it is within a third of the name's length
-/// (at least one edit).
+/// The operation of a binary operator.
+fn binary(op: BinaryOp) -> Binary {
+    match op {
+        BinaryOp::Add => Binary::Add,
+        BinaryOp::Sub => Binary::Sub,
+        BinaryOp::Mul => Binary::Mul,
+        BinaryOp::Div => Binary::Div,
+        BinaryOp::Pow => Binary::Pow,
+    }
+}
+
+/// The candidate closest to `name`, if it is within a third of the name's length (at least one
+/// edit): closest by edit distance ignoring case, then by edit distance, then first given. A name
+/// that differs only in case (`K` for `k`) is therefore always the suggestion.
 pub(super) fn closest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<String> {
     let limit = (name.chars().count() / 3).max(1);
+    let lower = name.to_lowercase();
     candidates
-        .map(|c| (edit_distance(name, c), c))
-        .filter(|(d, _)| *d <= limit)
+        .map(|c| ((edit_distance(&lower, &c.to_lowercase()), edit_distance(name, c)), c))
+        .filter(|((folded, _), _)| *folded <= limit)
         .min_by_key(|(d, _)| *d)
         .map(|(_, c)| c.to_owned())
 }

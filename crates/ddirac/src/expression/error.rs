@@ -69,6 +69,12 @@ pub enum SyntaxError {
         /// What would have been accepted.
         expected: String,
     },
+    /// `**`, which is a power in other languages.
+    #[error("unexpected `**`; write `^` for powers (`x^2`), `**` is not an operator")]
+    DoubleStar {
+        /// The two stars.
+        span: Span,
+    },
     /// The input ended inside parentheses.
     #[error("missing `)` to close the `(` at {open}; expected `)` before the end of the expression")]
     MissingParen {
@@ -108,6 +114,7 @@ impl SyntaxError {
             SyntaxError::UnexpectedCharacter { span, .. }
             | SyntaxError::MalformedNumber { span, .. }
             | SyntaxError::UnexpectedToken { span, .. }
+            | SyntaxError::DoubleStar { span }
             | SyntaxError::MissingParen { span, .. }
             | SyntaxError::TrailingInput { span, .. }
             | SyntaxError::Empty { span }
@@ -329,11 +336,18 @@ fn did_you_mean(suggestion: &Option<String>) -> String {
     suggestion.as_ref().map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default()
 }
 
+/// The names of a cycle, `a → b → a`; of a long cycle, the first and last eight.
 fn cycle_text(cycle: &[CycleStep]) -> String {
     let mut names: Vec<&str> = Vec::with_capacity(cycle.len() + 1);
     if let Some(Origin::Definition(first)) = cycle.first().map(|s| &s.origin) {
         names.push(first);
     }
     names.extend(cycle.iter().map(|s| s.name.as_str()));
+    const SHOWN: usize = 8;
+    if names.len() > 2 * SHOWN + 1 {
+        let hidden = format!("… ({} more)", names.len() - 2 * SHOWN);
+        let (head, tail) = (names[..SHOWN].join(" → "), names[names.len() - SHOWN..].join(" → "));
+        return format!("{head} → {hidden} → {tail}");
+    }
     names.join(" → ")
 }

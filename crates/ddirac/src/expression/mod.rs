@@ -12,12 +12,15 @@
 //! atom       := number | name | name "(" arguments ")" | "(" expression ")"
 //! ```
 //!
-//! `^` binds tighter than a sign, so `-x^2` is `-(x^2)`. Numbers take any usual notation (`1`, `1.5`,
-//! `.5`, `3.`, `1e-3`, `2.5E+4`); names are `[A-Za-z_][A-Za-z0-9_]*`. The functions are `sin cos tan
-//! asin acos atan sinh cosh tanh exp ln log sqrt abs` (one argument; `log` is the natural logarithm,
-//! like `ln`) and `atan2(y, x) pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]). `x^n` (or `pow(x, n)`)
-//! with an integer constant n, |n| ≤ 1024, is `powi` (`x^2` is x·x, as in `powi`), with another
-//! constant exponent `powf`, and otherwise `exp(n ln x)`.
+//! `^` binds tighter than a sign, so `-x^2` is `-(x^2)`. A run of `+ -` (or of `* /`) is read in a
+//! loop into one [`ExprKind::Chain`], so a sum of any length is one level of the tree; real nesting
+//! (parentheses, signs, powers, calls) is limited to [`MAX_DEPTH`] levels. `**` is an error that
+//! says to write `^`. Numbers take any usual notation (`1`, `1.5`, `.5`, `3.`, `1e-3`, `2.5E+4`);
+//! names are `[A-Za-z_][A-Za-z0-9_]*`. The functions are `sin cos tan asin acos atan sinh cosh tanh
+//! exp ln log sqrt abs` (one argument; `log` is the natural logarithm, like `ln`) and `atan2(y, x)
+//! pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]). `x^n` (or `pow(x, n)`) with an integer constant
+//! n, |n| ≤ 1024, is `powi` (`x^2` is x·x, as in `powi`), with another constant exponent `powf`, and
+//! otherwise `exp(n ln x)`.
 //! `min`/`max` pick one argument by value and carry that argument's derivatives.
 //!
 //! # Compilation
@@ -27,12 +30,15 @@
 //! but not in a cycle). [`Scope::compile`] resolves names, folds every subexpression that does not
 //! depend on a variable into an f64, merges identical subexpressions (so each definition and each
 //! repeated `sin(φ)` is computed once), pairs `sin`/`cos` of the same argument into one `sin_cos`,
-//! and allocates registers by linear scan. Folding and gathering of constant factors may change the
-//! last bits of a result relative to a literal left-to-right evaluation.
+//! and allocates registers by linear scan. Definitions are lowered each after those it uses, in an
+//! order found without recursion, so that a long chain of definitions needs no deep stack. Folding
+//! and gathering of constant factors may change the last bits of a result relative to a literal
+//! left-to-right evaluation.
 //!
 //! Every token and syntax node carries its byte [`Span`] in its source, and every error names the
 //! source it belongs to ([`Origin`]: the Lagrangian, a definition, an exact solution), so that a
-//! caller can point at the offending text in a spec file.
+//! caller can point at the offending text in a spec file. An unknown name comes with the closest
+//! known one, a name that differs only in case first (`K` → `k`).
 //!
 //! ```
 //! use ddirac::expression::Scope;
@@ -46,6 +52,7 @@
 
 mod ast;
 mod compile;
+mod definitions;
 mod emit;
 mod error;
 mod eval;

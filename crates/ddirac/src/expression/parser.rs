@@ -2,13 +2,19 @@
 //!
 //! Binding powers, loosest first: `+ -` (left), `* /` (left), prefix `- +`, `^` (right). A sign binds
 //! looser than `^`, so `-x^2` is `-(x^2)`, while `2^-x` is `2^(-x)`.
+//!
+//! Operations of one left-associative level in a row are read in a loop into one
+//! [`ExprKind::Chain`], so a sum of a hundred thousand terms is as shallow as a sum of two: neither
+//! the parser nor any pass over the tree recurses once per term. Recursion follows only real nesting
+//! (parentheses, signs, powers, calls, a product inside a sum), which [`MAX_DEPTH`] bounds.
 
 use super::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 use super::lexer::{tokenize, Token, TokenKind};
 use super::{Span, SyntaxError};
 
-/// The deepest syntax tree accepted (levels of nesting, counting every operation), so that the
-/// recursive passes over a tree stay far from the limits of the stack.
+/// The deepest syntax tree accepted (levels of nesting: parentheses, signs, powers, calls, and one
+/// level for each chain of operations, however long), so that the recursive passes over a tree stay
+/// far from the limits of the stack.
 pub const MAX_DEPTH: usize = 1000;
 
 const PREFIX_POWER: u8 = 5;
@@ -81,14 +87,16 @@ impl Parser<'_> {
         if nesting > MAX_DEPTH {
             return Err(SyntaxError::TooDeep { span: self.peek().map_or(self.end(), |t| t.span), limit: MAX_DEPTH });
         }
-        let (mut lhs, mut depth) = self.prefix(nesting)?;
-        loop {
-            let op = match self.peek().map(|t| t.kind) {
-                Some(TokenKind::Plus) => BinaryOp::Add,
-                Some(TokenKind::Minus) => BinaryOp::Sub,
-                Some(TokenKind::Star) => BinaryOp::Mul,
-                Some(TokenKind::Slash) => BinaryOp::Div,
-                Some(TokenKind::Caret) => BinaryOp::Pow,
+        let (first, first_depth) = self.prefix(nesting)?;
+        // The operations read so far at the level of the last operator: `lhs` is their value.
+        let mut chain = Chain { first, depth: first_depth, rest: Vec::new() };
+        while let Some(token) = self.peek() {
+            let op = match token.kind {
+                TokenKind::Plus => BinaryOp::Add,
+                TokenKind::Minus => BinaryOp::Sub,
+                TokenKind::Star => BinaryOp::Mul,
+                TokenKind::Slash => BinaryOp::Div,
+                TokenKind::Caret => BinaryOp::Pow,
                 _ => break,
             };
             let (left_power, right_power) = match op {
@@ -100,12 +108,31 @@ impl Parser<'_> {
                 break;
             }
             self.next();
+            if op == BinaryOp::Mul {
+                self.double_star(token)?;
+            }
             let (rhs, rhs_depth) = self.expression(right_power, nesting + 1)?;
-            let span = lhs.span.to(rhs.span);
-            let kind = ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) };
-            (lhs, depth) = Self::node(kind, span, depth.max(rhs_depth) + 1)?;
+            let continues =
+                chain.rest.last().is_some_and(|(last, _)| last.level() == op.level() && op != BinaryOp::Pow);
+            if !continues && !chain.rest.is_empty() {
+                let (lhs, depth) = chain.finish()?;
+                chain = Chain { first: lhs, depth, rest: Vec::new() };
+            }
+            chain.depth = chain.depth.max(rhs_depth);
+            chain.rest.push((op, rhs));
         }
-        Ok((lhs, depth))
+        chain.finish()
+    }
+
+    /// The error for `**` (a power in other languages) at the first `*`, if the next token is a `*`
+    /// right after it.
+    fn double_star(&self, star: Token) -> Result<(), SyntaxError> {
+        match self.peek() {
+            Some(next) if next.kind == TokenKind::Star && next.span.start == star.span.end => {
+                Err(SyntaxError::DoubleStar { span: star.span.to(next.span) })
+            }
+            _ => Ok(()),
+        }
     }
 
     fn prefix(&mut self, nesting: usize) -> Result<Parsed, SyntaxError> {
@@ -166,5 +193,29 @@ impl Parser<'_> {
             None => Err(SyntaxError::MissingParen { span: self.end(), open }),
             other => Err(self.unexpected(other, expected)),
         }
+    }
+}
+
+/// Operations of one level being read: `first`, then each operator with its right operand.
+struct Chain {
+    first: Expr,
+    /// The depth of the deepest operand.
+    depth: usize,
+    rest: Vec<(BinaryOp, Expr)>,
+}
+
+impl Chain {
+    /// The node of the chain: `first` alone, one [`ExprKind::Binary`] operation, or an
+    /// [`ExprKind::Chain`].
+    fn finish(mut self) -> Result<Parsed, SyntaxError> {
+        let Some((_, last)) = self.rest.last() else { return Ok((self.first, self.depth)) };
+        let span = self.first.span.to(last.span);
+        let kind = if self.rest.len() == 1 {
+            let (op, rhs) = self.rest.pop().expect("one operation");
+            ExprKind::Binary { op, lhs: Box::new(self.first), rhs: Box::new(rhs) }
+        } else {
+            ExprKind::Chain { first: Box::new(self.first), rest: self.rest }
+        };
+        Parser::node(kind, span, self.depth + 1)
     }
 }
