@@ -139,6 +139,9 @@ enum Command {
     /// Check a spec without integrating: invariance of L_d, 2π-periodicity of the angles, connection
     /// axioms, Legendre rank and the primary constraint; exits 2 when a run of the spec's method would
     /// be refused (the verdict and the message a run gives).
+    #[command(after_help = "Examples:
+  ddirac check examples/point_vortices.toml
+  ddirac check examples/heavy_top.toml --set method.reduced=true")]
     Check {
         #[command(flatten)]
         input: SpecInput,
