@@ -34,7 +34,7 @@ pub fn check(options: &CheckOptions) -> Result<(), CliError> {
     };
     let report = plan.system.check(&plan.problem, &plan.method).map_err(located)?;
     let verdict = report.verdict(&plan.method);
-    println!("{}", Findings.text(&plan, &report, &verdict));
+    println!("{}", text(&plan, &report, &verdict));
     match verdict {
         Ok(warnings) => {
             crate::report::print_warnings(&warnings);
@@ -43,9 +43,6 @@ pub fn check(options: &CheckOptions) -> Result<(), CliError> {
         Err(error) => Err(located(error)),
     }
 }
-
-/// The printed report.
-struct Findings;
 
 /// One line of a hypothesis tested per coordinate.
 fn finding_line(heading: &str, f: &Finding, tolerance: f64, holds: &str, fails: &str) -> String {
@@ -62,72 +59,69 @@ fn finding_line(heading: &str, f: &Finding, tolerance: f64, holds: &str, fails: 
     )
 }
 
-impl Findings {
-    /// The report printed on stdout.
-    fn text(&self, plan: &Plan, report: &CheckReport, verdict: &Result<Vec<ddirac::Warning>, ddirac::Error>) -> String {
-        let coordinates = plan.system.coordinates();
-        let listed: Vec<String> = coordinates
-            .iter()
-            .map(|c| if c.role == Role::Group { format!("{} [group]", c.name) } else { c.name.clone() })
-            .collect();
-        let m = &plan.method;
-        let mut lines = vec![format!(
-            "{}: {} coordinates ({}), rule {}, variant {}, {}",
-            plan.name,
-            coordinates.len(),
-            listed.join(", "),
-            m.rule.name(),
-            m.variant.name(),
-            if m.reduced { "reduced" } else { "unreduced" }
-        )];
-        if report.invariance.is_empty() {
-            lines.push("  invariance        no group coordinates: nothing to reduce".into());
-        }
-        let not_invariant = match (m.reduced, m.check_invariance) {
-            (true, true) => "NOT invariant: reduction refused",
-            (true, false) => "NOT invariant: reduced anyway (check_invariance = false), with a warning",
-            (false, _) => "NOT invariant: the unreduced equations do not need it",
-        };
-        for (i, f) in report.invariance.iter().enumerate() {
-            let heading = if i == 0 { "invariance" } else { "" };
-            lines.push(finding_line(heading, f, report.invariance_tolerance, "invariant", not_invariant));
-        }
-        for (i, f) in report.periodicity.iter().enumerate() {
-            let heading = if i == 0 { "angles" } else { "" };
-            let fails = "NOT 2π-periodic: the chart may not wrap it";
-            lines.push(finding_line(heading, f, report.periodicity_tolerance, "2π-periodic", fails));
-        }
-        let n_g = report.invariance.len();
-        let n_x = coordinates.len() - n_g;
-        let connection = if m.connection.is_some() { "K as given" } else { "K = 0" };
-        let axioms = if report.connection_axioms { "axioms hold" } else { "axioms fail" };
-        lines.push(format!("  connection        {connection} ({n_g} × {n_x}): {axioms}"));
-        let legendre = if report.regular() { "regular" } else { "degenerate" };
-        lines.push(format!(
-            "  Legendre          {legendre} (rank {} of {}) at (q0, v0)",
-            report.legendre_rank, report.coordinates
-        ));
-        let momentum = match &plan.problem.initial {
-            InitialMomentum::Velocity(_) => {
-                "given as a velocity: p0 = ∂L/∂v(q0, v0) lies on the primary constraint".to_owned()
-            }
-            InitialMomentum::Momentum(_) if report.momentum_consistent() => format!(
-                "consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})",
-                report.constraint_mismatch
-            ),
-            InitialMomentum::Momentum(_) => format!(
-                "NOT consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})",
-                report.constraint_mismatch
-            ),
-        };
-        lines.push(format!("  initial momentum  {momentum}"));
-        let equations = if m.reduced { "reduced equations" } else { "unreduced equations" };
-        let verdict = match verdict {
-            Err(_) => "a run would be refused".to_owned(),
-            Ok(w) if w.is_empty() => format!("a run would be accepted ({equations})"),
-            Ok(w) => format!("a run would be accepted ({equations}) with {} warning(s)", w.len()),
-        };
-        lines.push(format!("  verdict           {verdict}"));
-        lines.join("\n")
+/// The report printed on stdout.
+fn text(plan: &Plan, report: &CheckReport, verdict: &Result<Vec<ddirac::Warning>, ddirac::Error>) -> String {
+    let coordinates = plan.system.coordinates();
+    let listed: Vec<String> = coordinates
+        .iter()
+        .map(|c| if c.role == Role::Group { format!("{} [group]", c.name) } else { c.name.clone() })
+        .collect();
+    let m = &plan.method;
+    let mut lines = vec![format!(
+        "{}: {} coordinates ({}), rule {}, variant {}, {}",
+        plan.name,
+        coordinates.len(),
+        listed.join(", "),
+        m.rule.name(),
+        m.variant.name(),
+        if m.reduced { "reduced" } else { "unreduced" }
+    )];
+    if report.invariance.is_empty() {
+        lines.push("  invariance        no group coordinates: nothing to reduce".into());
     }
+    let not_invariant = match (m.reduced, m.check_invariance) {
+        (true, true) => "NOT invariant: reduction refused",
+        (true, false) => "NOT invariant: reduced anyway (check_invariance = false), with a warning",
+        (false, _) => "NOT invariant: the unreduced equations do not need it",
+    };
+    for (i, f) in report.invariance.iter().enumerate() {
+        let heading = if i == 0 { "invariance" } else { "" };
+        lines.push(finding_line(heading, f, report.invariance_tolerance, "invariant", not_invariant));
+    }
+    for (i, f) in report.periodicity.iter().enumerate() {
+        let heading = if i == 0 { "angles" } else { "" };
+        let fails = "NOT 2π-periodic: the chart may not wrap it";
+        lines.push(finding_line(heading, f, report.periodicity_tolerance, "2π-periodic", fails));
+    }
+    let n_g = report.invariance.len();
+    let n_x = coordinates.len() - n_g;
+    let connection = if m.connection.is_some() { "K as given" } else { "K = 0" };
+    let axioms = if report.connection_axioms { "axioms hold" } else { "axioms fail" };
+    lines.push(format!("  connection        {connection} ({n_g} × {n_x}): {axioms}"));
+    let legendre = if report.regular() { "regular" } else { "degenerate" };
+    lines.push(format!(
+        "  Legendre          {legendre} (rank {} of {}) at (q0, v0)",
+        report.legendre_rank, report.coordinates
+    ));
+    let momentum = match &plan.problem.initial {
+        InitialMomentum::Velocity(_) => {
+            "given as a velocity: p0 = ∂L/∂v(q0, v0) lies on the primary constraint".to_owned()
+        }
+        InitialMomentum::Momentum(_) if report.momentum_consistent() => {
+            format!("consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})", report.constraint_mismatch)
+        }
+        InitialMomentum::Momentum(_) => format!(
+            "NOT consistent with the primary constraint p = ∂L/∂v (mismatch {:.2e})",
+            report.constraint_mismatch
+        ),
+    };
+    lines.push(format!("  initial momentum  {momentum}"));
+    let equations = if m.reduced { "reduced equations" } else { "unreduced equations" };
+    let verdict = match verdict {
+        Err(_) => "a run would be refused".to_owned(),
+        Ok(w) if w.is_empty() => format!("a run would be accepted ({equations})"),
+        Ok(w) => format!("a run would be accepted ({equations}) with {} warning(s)", w.len()),
+    };
+    lines.push(format!("  verdict           {verdict}"));
+    lines.join("\n")
 }

@@ -11,8 +11,8 @@ use crate::diagnostics::{Warning, WarningKind};
 use crate::integrator::Setup;
 use crate::mechanics::legendre;
 use crate::periodicity::{periodicity_deviations, PERIODICITY_TOLERANCE};
-use crate::reduction::invariance::{invariance_deviations, Deviation, INVARIANCE_TOLERANCE};
-use crate::sampling::{self, ENOUGH};
+use crate::reduction::invariance::{invariance_deviations, INVARIANCE_TOLERANCE};
+use crate::sampling::{self, Deviation, ENOUGH};
 use crate::{DiscreteLagrangian, Error, InitialMomentum, Method, Problem, System};
 
 /// Relative tolerance of the primary-constraint check.

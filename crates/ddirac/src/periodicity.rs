@@ -8,8 +8,7 @@
 
 use std::f64::consts::TAU;
 
-use crate::reduction::invariance::{relative_change, Deviation};
-use crate::sampling::Sample;
+use crate::sampling::{relative_change, Deviation, Sample};
 use crate::{CoordinateKind, DiscreteLagrangian, System};
 
 /// Relative tolerance of the periodicity deviation.

@@ -102,3 +102,40 @@ pub fn rounding<const N: usize>(sample: &Sample<N>, moved: f64, shift: f64) -> f
     64.0 * f64::EPSILON
         * (sample.derivatives.value.abs().max(moved.abs()) + sample.slope() * (position + shift.abs()) * N as f64)
 }
+
+/// The outcome of a test of one coordinate over the sampled pairs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Deviation {
+    /// Index of the coordinate.
+    pub coordinate: usize,
+    /// The largest relative deviation over the pairs (0 when there were none).
+    pub deviation: f64,
+    /// How many pairs had a finite L_d.
+    pub samples: usize,
+}
+
+impl Deviation {
+    /// Whether enough pairs were found for a verdict.
+    pub fn decided(&self) -> bool {
+        self.samples >= ENOUGH
+    }
+}
+
+/// The deviation of a moved value from a sample's value, relative to `shift` times the sample's
+/// slope, after the rounding error of both values is taken off; infinite when `moved` is not finite.
+pub fn relative_change<const N: usize>(sample: &Sample<N>, moved: f64, shift: f64) -> f64 {
+    if !moved.is_finite() {
+        return f64::INFINITY;
+    }
+    let change = ((moved - sample.derivatives.value).abs() - rounding(sample, moved, shift)).max(0.0);
+    ratio(change, shift.abs() * sample.slope())
+}
+
+/// `numerator / scale`, with 0/0 = 0 and x/0 = ∞.
+pub fn ratio(numerator: f64, scale: f64) -> f64 {
+    match (numerator, scale) {
+        (0.0, _) => 0.0,
+        (n, s) if s > 0.0 => n / s,
+        _ => f64::INFINITY,
+    }
+}

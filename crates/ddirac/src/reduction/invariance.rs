@@ -11,54 +11,17 @@
 //!
 //! Both are unchanged when L is shifted by a constant or multiplied by a factor. A shifted value that
 //! is not finite counts as an infinite deviation, and a verdict needs at least
-//! [`sampling::ENOUGH`](crate::sampling::ENOUGH) pairs where L_d is finite: with fewer the check
+//! [`ENOUGH`](crate::sampling::ENOUGH) pairs where L_d is finite: with fewer the check
 //! could not decide, and a reduced run is refused unless the check is explicitly turned off.
 
-use crate::sampling::{self, Sample, Uniform};
+use crate::sampling::{ratio, relative_change, Deviation, Sample, Uniform};
 use crate::{DiscreteLagrangian, Split, System};
 
 /// Relative tolerance of the invariance deviation.
 pub const INVARIANCE_TOLERANCE: f64 = 1e-9;
 
-/// The outcome of a test of one coordinate over the sampled pairs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Deviation {
-    /// Index of the coordinate.
-    pub coordinate: usize,
-    /// The largest relative deviation over the pairs (0 when there were none).
-    pub deviation: f64,
-    /// How many pairs had a finite L_d.
-    pub samples: usize,
-}
-
-impl Deviation {
-    /// Whether enough pairs were found for a verdict.
-    pub fn decided(&self) -> bool {
-        self.samples >= sampling::ENOUGH
-    }
-}
-
-/// The deviation of a moved value from a sample's value, relative to `shift` times the sample's
-/// slope, after the rounding error of both values is taken off; infinite when `moved` is not finite.
-pub fn relative_change<const N: usize>(sample: &Sample<N>, moved: f64, shift: f64) -> f64 {
-    if !moved.is_finite() {
-        return f64::INFINITY;
-    }
-    let change = ((moved - sample.derivatives.value).abs() - sampling::rounding(sample, moved, shift)).max(0.0);
-    ratio(change, shift.abs() * sample.slope())
-}
-
-/// `numerator / scale`, with 0/0 = 0 and x/0 = ∞.
-pub(crate) fn ratio(numerator: f64, scale: f64) -> f64 {
-    match (numerator, scale) {
-        (0.0, _) => 0.0,
-        (n, s) if s > 0.0 => n / s,
-        _ => f64::INFINITY,
-    }
-}
-
 /// The invariance deviation of L_d under translations of each group coordinate alone, over the
-/// pairs `samples` (from [`sampling::near`]): one [`Deviation`] per group coordinate, in the order of
+/// pairs `samples` (from [`crate::sampling::near`]): one [`Deviation`] per group coordinate, in the order of
 /// `split.group`.
 pub fn invariance_deviations<S: System<N>, const N: usize>(
     ld: &DiscreteLagrangian<'_, S>,
