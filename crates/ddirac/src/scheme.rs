@@ -194,10 +194,13 @@ impl<const N: usize> StepDerivatives<N> {
         z: &SVector<f64, N>,
         with_mixed: bool,
     ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
-        match self {
+        let compiled = match self {
             Self::Compiled { pair, .. } => pair.first_or_mixed(base, &(*z).into(), with_mixed),
-            Self::Dual => ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed),
-        }
+            Self::Dual => None,
+        };
+        // Where a guard of the trace fails (another branch of a comparison), dual numbers answer.
+        compiled
+            .unwrap_or_else(|| ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed))
     }
 }
 

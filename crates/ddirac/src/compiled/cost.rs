@@ -83,7 +83,7 @@ pub struct CompileCost {
 impl CompileCost {
     /// The estimate for `programs` (see the module documentation).
     pub fn estimate<const N: usize>(programs: &PairPrograms) -> Self {
-        let PairPrograms { first, mixed, operations } = programs;
+        let PairPrograms { first, mixed, operations, .. } = programs;
         let n = N as f64;
         let compile = |p: &Program| {
             COMPILE_PER_PROGRAM

@@ -38,6 +38,17 @@ pub struct PairPrograms {
     /// The operations of f itself as traced (with a as an input, before differentiation): what one
     /// evaluation of f by dual numbers computes.
     pub operations: usize,
+    /// The guards of the trace ([`super::trace`]): each program ends with one output per guard, the
+    /// sign of a difference, valid where it is one of the signs allowed here (bits of `Sign`).
+    pub guards: Vec<u8>,
+}
+
+impl PairPrograms {
+    /// Whether the guard outputs `signs` (the programs' last outputs) allow the point they were
+    /// computed at.
+    pub fn holds(guards: &[u8], signs: &[f64]) -> bool {
+        guards.iter().zip(signs).all(|(&allowed, &s)| allowed & trace::Sign::of(s) as u8 != 0)
+    }
 }
 
 /// Traces f(base, a, b) at (base, 0, b) and returns its programs.
@@ -58,18 +69,22 @@ pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> 
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
-    let PairGraph { mut graph, value, da, db, operations } = pair_graph(f, base, b)?;
+    let PairGraph { mut graph, value, da, db, operations, guards } = pair_graph(f, base, b)?;
     let columns: Vec<Vec<Node>> = (0..N)
         .map(|j| match graph.input_node(N + j) {
             Some(b_j) => directional(&mut graph, b_j, &da),
             None => vec![graph.constant(0.0); N],
         })
         .collect();
-    let roots: Vec<Node> = std::iter::once(value).chain(da).chain(db).collect();
+    let mut roots: Vec<Node> = std::iter::once(value).chain(da).chain(db).collect();
     let mut outputs = roots.clone();
     outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
     check_finite(&graph, &outputs, N)?;
-    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs), operations })
+    let signs = guards.iter().map(|(node, _)| *node);
+    roots.extend(signs.clone());
+    outputs.extend(signs);
+    let guards = guards.iter().map(|(_, allowed)| *allowed).collect();
+    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs), operations, guards })
 }
 
 /// A pair function's value and gradient at a = 0, as nodes of a graph whose inputs are (base, b).
@@ -80,6 +95,8 @@ pub(super) struct PairGraph {
     pub db: Vec<Node>,
     /// The operations of f as traced ([`PairPrograms::operations`]).
     pub operations: usize,
+    /// The guards: the node of each sign and its allowed signs ([`PairPrograms::guards`]).
+    pub guards: Vec<(Node, u8)>,
 }
 
 /// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above.
@@ -88,7 +105,7 @@ where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
     let point: Vec<f64> = base.iter().chain(&[0.0; N]).chain(b).copied().collect();
-    let (mut graph, y) = trace::trace(&point, |x| {
+    let trace::Recorded { mut graph, result: y, guards } = trace::trace(&point, |x| {
         let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
         f(&block(0), &block(1), &block(2))
     })?;
@@ -97,9 +114,18 @@ where
     let wrt: Vec<Node> = (N..3 * N).map(|k| k as Node).collect();
     let mut roots = vec![y];
     roots.extend(gradient(&mut graph, y, &wrt));
+    roots.extend(guards.iter().map(|g| g.node));
     let a_is_zero: Vec<Option<f64>> = (0..3 * N).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
     let (graph, roots) = graph.substitute(&roots, &a_is_zero);
-    Ok(PairGraph { graph, value: roots[0], da: roots[1..=N].to_vec(), db: roots[1 + N..].to_vec(), operations })
+    let guards = guards.iter().zip(&roots[1 + 2 * N..]).map(|(g, &node)| (node, g.allowed)).collect();
+    Ok(PairGraph {
+        graph,
+        value: roots[0],
+        da: roots[1..=N].to_vec(),
+        db: roots[1 + N..1 + 2 * N].to_vec(),
+        operations,
+        guards,
+    })
 }
 
 /// `NotCompiled::NonFinite` unless every output is finite at the graph's build point; outputs are

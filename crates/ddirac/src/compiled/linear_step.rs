@@ -125,7 +125,11 @@ fn step_program<const N: usize>(
     advances: &[bool; N],
     eliminable: &[bool; N],
 ) -> Option<Program> {
-    let PairGraph { mut graph, value, da, db, .. } = pair;
+    let PairGraph { mut graph, value, da, db, guards, .. } = pair;
+    // A guarded trace holds on part of the space only; the closed form would have to check its guards.
+    if !guards.is_empty() {
+        return None;
+    }
     let g = &mut graph;
     // Momenta that do not advance (μ) are conserved exactly: constants of the run.
     let m: Vec<Node> = (0..N)

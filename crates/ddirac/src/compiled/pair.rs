@@ -42,9 +42,14 @@ impl From<JitError> for CompileError {
 }
 
 /// Native code for the derivatives of f(base, a, b) at a = 0, for N coordinates.
+///
+/// If the trace of f was guarded (f compares numbers, see [`super::trace`]), the programs hold only
+/// where the guards do: [`CompiledPair::first_or_mixed`] answers `None` elsewhere.
 pub struct CompiledPair<const N: usize> {
     first: NativeProgram,
     mixed: NativeProgram,
+    /// The allowed signs of each guard ([`PairPrograms::guards`]).
+    guards: Vec<u8>,
     /// Instruction counts of the two programs (without, with the mixed block).
     pub instructions: (usize, usize),
     buffers: RefCell<Buffers>,
@@ -73,9 +78,10 @@ impl<const N: usize> CompiledPair<N> {
     /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`]); programs
     /// with other numbers of inputs or outputs are an error.
     pub fn from_programs(programs: &PairPrograms) -> Result<Self, CompileError> {
-        let PairPrograms { first, mixed, .. } = programs;
+        let PairPrograms { first, mixed, guards, .. } = programs;
         let shape = |p: &Program| (p.inputs, p.outputs.len());
-        if shape(first) != (2 * N, 1 + 2 * N) || shape(mixed) != (2 * N, 1 + 2 * N + N * N) {
+        let g = guards.len();
+        if shape(first) != (2 * N, 1 + 2 * N + g) || shape(mixed) != (2 * N, 1 + 2 * N + N * N + g) {
             return Err(CompileError::Native(format!(
                 "the programs do not compute a pair function of {N} coordinates (inputs and outputs {:?} and {:?})",
                 shape(first),
@@ -86,18 +92,20 @@ impl<const N: usize> CompiledPair<N> {
         Ok(Self {
             first: NativeProgram::compile(first)?,
             mixed: NativeProgram::compile(mixed)?,
+            guards: guards.clone(),
             instructions,
-            buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N] }),
+            buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N + g] }),
         })
     }
 
-    /// Value, ∂f/∂a and ∂f/∂b at (`base`, 0, `b`), and with `with_mixed` the block ∂²f/∂a∂b.
+    /// Value, ∂f/∂a and ∂f/∂b at (`base`, 0, `b`), and with `with_mixed` the block ∂²f/∂a∂b; `None`
+    /// where a guard of the trace does not hold (the programs are another branch's there).
     pub fn first_or_mixed(
         &self,
         base: &[f64; N],
         b: &[f64; N],
         with_mixed: bool,
-    ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
+    ) -> Option<(FirstDerivatives<N>, Option<SMatrix<f64, N, N>>)> {
         let mut buffers = self.buffers.borrow_mut();
         let Buffers { inputs, outputs } = &mut *buffers;
         inputs[..N].copy_from_slice(base);
@@ -105,13 +113,17 @@ impl<const N: usize> CompiledPair<N> {
         let program = if with_mixed { &self.mixed } else { &self.first };
         let outputs = &mut outputs[..program.outputs()];
         program.call(inputs, outputs);
+        let signs = &outputs[outputs.len() - self.guards.len()..];
+        if !PairPrograms::holds(&self.guards, signs) {
+            return None;
+        }
         let first = FirstDerivatives {
             value: outputs[0],
             da: SVector::from_fn(|i, _| outputs[1 + i]),
             db: SVector::from_fn(|i, _| outputs[1 + N + i]),
         };
         let mixed = with_mixed.then(|| SMatrix::from_fn(|i, j| outputs[1 + 2 * N + i * N + j]));
-        (first, mixed)
+        Some((first, mixed))
     }
 
     /// Checks the compiled numbers against `dual` (the same derivatives by dual numbers) at one point:
@@ -123,7 +135,9 @@ impl<const N: usize> CompiledPair<N> {
         dual: (FirstDerivatives<N>, SMatrix<f64, N, N>),
         tolerance: f64,
     ) -> Result<(), CompileError> {
-        let (c, cm) = self.first_or_mixed(base, b, true);
+        let Some((c, cm)) = self.first_or_mixed(base, b, true) else {
+            return Err(CompileError::Disagrees { what: "guards of the trace", compiled: f64::NAN, dual: 0.0 });
+        };
         let cm = cm.unwrap_or_else(SMatrix::zeros);
         let (d, dm) = dual;
         let blocks: [(&'static str, &[f64], &[f64]); 4] = [

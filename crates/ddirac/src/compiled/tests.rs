@@ -213,8 +213,34 @@ fn program_sizes_of_the_paper_systems() {
 fn branching_on_an_input_dependent_value_is_detected() {
     let branch = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| if a[0].re() > 0.0 { a[0] } else { b[0] };
     assert_eq!(pair_programs(branch, &[1.0], &[2.0]), Err(NotCompiled::ValueInspected { operation: "re" }));
-    let compare = |base: &[Traced; 1], _: &[Traced; 1], b: &[Traced; 1]| if base[0] < b[0] { b[0] } else { base[0] };
-    assert_eq!(pair_programs(compare, &[1.0], &[2.0]), Err(NotCompiled::ValueInspected { operation: "comparison" }));
+}
+
+/// A comparison is answered for the trace point and guarded: the programs report, through their guard
+/// outputs, whether a point lies on the branch that was traced.
+#[test]
+fn comparisons_are_guarded() {
+    let larger = |base: &[Traced; 1], _: &[Traced; 1], b: &[Traced; 1]| if base[0] < b[0] { b[0] } else { base[0] };
+    let programs = pair_programs(larger, &[1.0], &[2.0]).unwrap();
+    assert_eq!(programs.guards.len(), 1);
+    let at = |base: f64, b: f64| {
+        let mut out = [0.0; 4];
+        programs.first.eval(&[base, b], &mut Vec::new(), &mut out);
+        (out, PairPrograms::holds(&programs.guards, &out[3..]))
+    };
+    // On the traced branch (base < b): f = b, ∂f/∂a = 0, ∂f/∂b = 1.
+    assert_eq!(at(0.5, 3.0), ([3.0, 0.0, 1.0, -1.0], true));
+    // Off it (base ≥ b) the guard fails.
+    assert!(!at(3.0, 0.5).1);
+    assert!(!at(2.0, 2.0).1);
+    // A comparison of constants needs no guard.
+    let constant = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| {
+        if Traced::from(1.0) < Traced::from(2.0) {
+            a[0] * b[0]
+        } else {
+            b[0]
+        }
+    };
+    assert!(pair_programs(constant, &[1.0], &[2.0]).unwrap().guards.is_empty());
 }
 
 #[test]

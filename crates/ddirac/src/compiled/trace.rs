@@ -7,10 +7,15 @@
 //! their combinations cost nothing in the recorded graph.
 //!
 //! A recording is valid for every input only if the code does the same operations everywhere. Code
-//! that looks at a value ([`num_dual::DualStruct::re`], comparisons, `is_positive`, …) may branch
-//! on it; on an input-dependent value this makes the trace fail with [`NotCompiled::ValueInspected`]
-//! (the value at the trace point is still returned, so the code runs on). On constants it is
-//! harmless and allowed. Operations without an instruction in [`super::program`] (`%`, which
+//! that compares numbers (`<`, `==`, `partial_cmp`, `is_positive`, … — what `min`, `max` and
+//! piecewise functions do) may branch on the answer. A comparison of input-dependent numbers is
+//! answered for the trace point and *guarded*: the recording keeps sign(x − y) as a [`Guard`] with
+//! the signs that give the same answer, and a program evaluated where a guard's sign is another one
+//! is not valid there (the caller then uses dual numbers for that point). Within its guards a
+//! program is the branch the trace took, with that branch's (one-sided) derivatives. Code that reads
+//! the value itself ([`num_dual::DualStruct::re`]) may do anything with it; on an input-dependent
+//! number this makes the trace fail with [`NotCompiled::ValueInspected`] (the value at the trace point
+//! is still returned, so the code runs on). On constants both are harmless and allowed. Operations without an instruction in [`super::program`] (`%`, which
 //! truncates, and the spherical Bessel functions) fail with [`NotCompiled::Unsupported`] on
 //! input-dependent numbers.
 
@@ -82,20 +87,111 @@ pub struct Traced {
     trace: u32,
 }
 
-/// The graph being recorded on this thread, and the first reason it cannot be compiled.
+/// A comparison the traced code made, kept as the sign of a difference and the signs for which the
+/// comparison gives the answer it gave at the trace point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Guard {
+    /// The node of sign(x − y).
+    pub node: Node,
+    /// The allowed signs, a set of [`Sign`]s as bits.
+    pub allowed: u8,
+}
+
+/// The sign of a difference x − y: which way a comparison of x and y goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Sign {
+    Negative = 1,
+    Zero = 2,
+    Positive = 4,
+    /// x or y is NaN (or x − y is ∞ − ∞, which the guard treats as unknown).
+    Unordered = 8,
+}
+
+impl Sign {
+    const ALL: [Sign; 4] = [Sign::Negative, Sign::Zero, Sign::Positive, Sign::Unordered];
+
+    /// The class of a value of sign(x − y).
+    pub(super) fn of(s: f64) -> Sign {
+        if s < 0.0 {
+            Sign::Negative
+        } else if s > 0.0 {
+            Sign::Positive
+        } else if s == 0.0 {
+            Sign::Zero
+        } else {
+            Sign::Unordered
+        }
+    }
+
+    /// Whether the guard allows this sign.
+    pub(super) fn allowed_by(self, guard: &Guard) -> bool {
+        guard.allowed & self as u8 != 0
+    }
+}
+
+/// A comparison of two numbers, as the operators ask it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Comparison {
+    Less,
+    LessOrEqual,
+    Greater,
+    GreaterOrEqual,
+    Equal,
+}
+
+impl Comparison {
+    /// The answer for two numbers whose difference has the sign `sign`.
+    fn holds(self, sign: Sign) -> bool {
+        matches!(
+            (self, sign),
+            (Comparison::Less | Comparison::LessOrEqual, Sign::Negative)
+                | (Comparison::Greater | Comparison::GreaterOrEqual, Sign::Positive)
+                | (Comparison::LessOrEqual | Comparison::GreaterOrEqual | Comparison::Equal, Sign::Zero)
+        )
+    }
+}
+
+/// The graph being recorded on this thread, the comparisons it is guarded by, and the first reason it
+/// cannot be compiled.
 struct Recording {
     graph: Graph,
     trace: u32,
+    guards: Vec<Guard>,
     failure: Option<NotCompiled>,
 }
 
 impl Recording {
     fn new(trace: u32) -> Self {
-        Self { graph: Graph::new(), trace, failure: None }
+        Self { graph: Graph::new(), trace, guards: Vec::new(), failure: None }
     }
 
     fn fail(&mut self, failure: NotCompiled) {
         self.failure.get_or_insert(failure);
+    }
+
+    /// The sign of x − y at the trace point. When it depends on the inputs, a guard allows the signs
+    /// `same(sign)` gives (those for which the caller's answer is the same); a trace point whose own
+    /// sign the guard would not allow (∞ − ∞ for equal infinities) fails the trace.
+    fn guard<'s, I: Iterator<Item = &'s Sign>>(&mut self, x: Traced, y: Traced, same: impl FnOnce(Sign) -> I) -> Sign {
+        let (x, y) = (self.operand(x), self.operand(y));
+        let (vx, vy) = (self.graph.value(x), self.graph.value(y));
+        let sign = match vx.partial_cmp(&vy) {
+            Some(std::cmp::Ordering::Less) => Sign::Negative,
+            Some(std::cmp::Ordering::Equal) => Sign::Zero,
+            Some(std::cmp::Ordering::Greater) => Sign::Positive,
+            None => Sign::Unordered,
+        };
+        let difference = self.graph.sub(x, y);
+        let node = self.graph.unary(Unary::Signum, difference);
+        if self.graph.constant_of(node).is_none() {
+            let allowed = same(sign).fold(0, |bits, s| bits | *s as u8);
+            let guard = Guard { node, allowed };
+            if !Sign::of(self.graph.value(node)).allowed_by(&guard) {
+                self.fail(NotCompiled::ValueInspected { operation: "comparison" });
+            }
+            self.guards.push(guard);
+        }
+        sign
     }
 
     /// The node of `x`, if it belongs to this recording.
@@ -127,10 +223,16 @@ impl Drop for Restore {
     }
 }
 
+/// A recorded function: its graph, the node of its result and the guards it holds under.
+pub(super) struct Recorded {
+    pub graph: Graph,
+    pub result: Node,
+    pub guards: Vec<Guard>,
+}
+
 /// Runs `f` on one traced input per entry of `point` (recorded with that value) and returns the
-/// graph with the node of the result, or why it cannot be compiled. The inputs are the graph's first
-/// nodes, in order.
-pub(super) fn trace(point: &[f64], f: impl FnOnce(&[Traced]) -> Traced) -> Result<(Graph, Node), NotCompiled> {
+/// recording, or why it cannot be compiled. The inputs are the graph's first nodes, in order.
+pub(super) fn trace(point: &[f64], f: impl FnOnce(&[Traced]) -> Traced) -> Result<Recorded, NotCompiled> {
     let id = TRACES.with(|count| {
         count.set(count.get().wrapping_add(1).max(1));
         count.get()
@@ -142,7 +244,7 @@ pub(super) fn trace(point: &[f64], f: impl FnOnce(&[Traced]) -> Traced) -> Resul
     let recording = RECORDING.replace(Recording::new(0));
     match recording.failure {
         Some(failure) => Err(failure),
-        None => Ok((recording.graph, node)),
+        None => Ok(Recorded { graph: recording.graph, result: node, guards: recording.guards }),
     }
 }
 
@@ -175,6 +277,30 @@ impl Traced {
                 r.fail(NotCompiled::ValueInspected { operation });
             }
             r.graph.value(n)
+        })
+    }
+
+    /// Compares `self` with `other` at the trace point and guards the answer when it depends on the
+    /// inputs.
+    fn compare(self, other: Self, comparison: Comparison) -> bool {
+        RECORDING.with_borrow_mut(|r| {
+            let sign = r.guard(self, other, |sign| {
+                Sign::ALL.iter().filter(move |s| comparison.holds(**s) == comparison.holds(sign))
+            });
+            comparison.holds(sign)
+        })
+    }
+
+    /// The ordering of `self` and `other` at the trace point, guarded when it depends on the inputs.
+    fn ordering(self, other: Self) -> Option<std::cmp::Ordering> {
+        RECORDING.with_borrow_mut(|r| {
+            let sign = r.guard(self, other, |sign| Sign::ALL.iter().filter(move |s| **s == sign));
+            match sign {
+                Sign::Negative => Some(std::cmp::Ordering::Less),
+                Sign::Zero => Some(std::cmp::Ordering::Equal),
+                Sign::Positive => Some(std::cmp::Ordering::Greater),
+                Sign::Unordered => None,
+            }
         })
     }
 

@@ -5,7 +5,7 @@ use std::fmt;
 
 use num_dual::DualNum;
 
-use super::{record, Traced, RECORDING};
+use super::{record, Comparison, Traced, RECORDING};
 use crate::compiled::program::{Binary, Unary};
 
 /// Implements an operator for `Traced` with a `Traced`, `&Traced` or `f64` right-hand side, and its
@@ -105,7 +105,7 @@ impl num_traits::Zero for Traced {
         Self::constant(0.0)
     }
     fn is_zero(&self) -> bool {
-        self.inspect("is_zero") == 0.0
+        self.compare(Self::constant(0.0), Comparison::Equal)
     }
 }
 
@@ -122,13 +122,13 @@ impl num_traits::Num for Traced {
     }
 }
 
-/// |x| and sign(x) are operations of the program; the predicates look at the value.
+/// |x| and sign(x) are operations of the program; the predicates are guarded comparisons with zero.
 impl num_traits::Signed for Traced {
     fn abs(&self) -> Self {
         self.unary(Unary::Abs)
     }
     fn abs_sub(&self, o: &Self) -> Self {
-        if self.inspect("abs_sub") > o.inspect("abs_sub") {
+        if self > o {
             *self - *o
         } else {
             Self::constant(0.0)
@@ -138,35 +138,59 @@ impl num_traits::Signed for Traced {
         self.unary(Unary::Signum)
     }
     fn is_positive(&self) -> bool {
-        self.inspect("is_positive") > 0.0
+        self.compare(Self::constant(0.0), Comparison::Greater)
     }
     fn is_negative(&self) -> bool {
-        self.inspect("is_negative") < 0.0
+        self.compare(Self::constant(0.0), Comparison::Less)
     }
 }
 
-/// Comparisons look at the values (allowed on constants only, see the module documentation).
+/// Comparisons answer for the trace point and guard the answer (see the module documentation).
 impl PartialEq for Traced {
     fn eq(&self, o: &Self) -> bool {
-        self.inspect("==") == o.inspect("==")
+        self.compare(*o, Comparison::Equal)
     }
 }
 
 impl PartialEq<f64> for Traced {
     fn eq(&self, o: &f64) -> bool {
-        self.inspect("==") == *o
+        self.compare(Self::constant(*o), Comparison::Equal)
     }
 }
 
 impl PartialOrd for Traced {
     fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
-        self.inspect("comparison").partial_cmp(&o.inspect("comparison"))
+        self.ordering(*o)
+    }
+    fn lt(&self, o: &Self) -> bool {
+        self.compare(*o, Comparison::Less)
+    }
+    fn le(&self, o: &Self) -> bool {
+        self.compare(*o, Comparison::LessOrEqual)
+    }
+    fn gt(&self, o: &Self) -> bool {
+        self.compare(*o, Comparison::Greater)
+    }
+    fn ge(&self, o: &Self) -> bool {
+        self.compare(*o, Comparison::GreaterOrEqual)
     }
 }
 
 impl PartialOrd<f64> for Traced {
     fn partial_cmp(&self, o: &f64) -> Option<std::cmp::Ordering> {
-        self.inspect("comparison").partial_cmp(o)
+        self.ordering(Self::constant(*o))
+    }
+    fn lt(&self, o: &f64) -> bool {
+        self.compare(Self::constant(*o), Comparison::Less)
+    }
+    fn le(&self, o: &f64) -> bool {
+        self.compare(Self::constant(*o), Comparison::LessOrEqual)
+    }
+    fn gt(&self, o: &f64) -> bool {
+        self.compare(Self::constant(*o), Comparison::Greater)
+    }
+    fn ge(&self, o: &f64) -> bool {
+        self.compare(Self::constant(*o), Comparison::GreaterOrEqual)
     }
 }
 
