@@ -4,11 +4,11 @@
 //! and failure reporting; a scheme only says how to evaluate its residual and Jacobian, how the
 //! momenta advance, and how the solved unknowns move the configuration (reconstruction).
 
+use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
-use num_dual::DualNum;
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
-use crate::compiled::{pair_programs, CompileCost, CompileError, CompiledPair, LinearStep, Traced};
+use crate::compiled::{pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, Traced};
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
@@ -82,7 +82,7 @@ pub(crate) trait Scheme<const N: usize> {
     /// too when the function is traced for [`crate::compiled`].
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy;
 
     /// How the residual and the next momenta are formed from the generating function's derivatives.
@@ -141,7 +141,7 @@ impl<const N: usize> StepDerivatives<N> {
             )));
         }
         let generating = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| scheme.generating(base, a, b);
-        let programs = match (pair_programs(generating, base, z), choice) {
+        let programs = match (pair_programs_with_runtime_inputs(generating, base, z), choice) {
             (Ok(programs), _) => programs,
             (Err(e), Differentiation::Auto) => return dual_numbers(Some(e.to_string())),
             (Err(e), _) => return Err(e.into()),
@@ -240,7 +240,7 @@ struct Generating<'s, Sc, const N: usize> {
 
 impl<Sc: Scheme<N>, const N: usize> PairFunction<N> for Generating<'_, Sc, N> {
     #[inline]
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.scheme.generating(self.base, a, b)
     }
 }

@@ -5,7 +5,7 @@
 //! x ∈ Σ and group coordinates g ∈ G, where G is abelian and acts by translation of g. Coordinates keep
 //! the order the system gives them; [`Split`] offers named views of the x and g entries.
 
-use num_dual::DualNum;
+use crate::Scalar;
 
 /// Whether a coordinate lives on the real line or on the circle S¹ (paper §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -64,7 +64,9 @@ impl Coordinate {
 /// A Lagrangian system with `N` coordinates.
 ///
 /// The Lagrangian is written once, generically over the scalar, so that automatic differentiation
-/// (num-dual) gives every derivative the integrators need.
+/// gives every derivative the integrators need. Write it for `D: DualNum<Primitive = f64> + Copy`
+/// (num-dual's trait, re-exported as [`crate::num_dual`]): the trait asks for [`Scalar`], which adds
+/// only what compiled derivatives use, and an implementation may ask for less.
 ///
 /// ```
 /// use ddirac::{Coordinate, System};
@@ -85,7 +87,7 @@ pub trait System<const N: usize> {
     fn coordinates(&self) -> [Coordinate; N];
 
     /// The Lagrangian L(q, v).
-    fn lagrangian<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D; N], v: &[D; N]) -> D;
+    fn lagrangian<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D;
 
     /// The exact motion from `(q0, p0)` at time `t`, on the coordinates it is known for.
     ///

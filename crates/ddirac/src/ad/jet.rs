@@ -303,6 +303,7 @@ macro_rules! dual_number {
                 g(self)
             }
         }
+        impl<const A: usize, const B: usize> crate::Scalar for $t<A, B> {}
         impl<const A: usize, const B: usize> num_dual::DualNum for $t<A, B> {
             type Primitive = f64;
             const NDERIV: usize = $nderiv;

@@ -22,8 +22,8 @@ mod mixed;
 pub use gradient::Gradient;
 pub use mixed::Mixed;
 
+use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
-use num_dual::DualNum;
 
 /// Above this many coordinates the mixed block is computed in column chunks.
 pub const CROSSOVER: usize = 12;
@@ -33,7 +33,7 @@ pub const CHUNK: usize = 4;
 /// A scalar function f(a, b) of two blocks of n arguments, generic over the scalar type.
 pub trait PairFunction<const N: usize> {
     /// f(a, b).
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D;
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D;
 }
 
 /// f with its first derivatives and the mixed block at one point.

@@ -1,7 +1,8 @@
 //! The dual numbers against num-dual's `partial_hessian` on functions that use every operation.
 
+use crate::Scalar;
 use nalgebra::SVector;
-use num_dual::{partial_hessian, DualNum, HyperDualSVec64};
+use num_dual::{partial_hessian, HyperDualSVec64};
 
 use super::*;
 
@@ -9,7 +10,7 @@ use super::*;
 struct Everything;
 
 impl PairFunction<3> for Everything {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; 3], b: &[D; 3]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; 3], b: &[D; 3]) -> D {
         let (x, y, z) = (a[0], a[1], a[2]);
         let (u, v, w) = (b[0], b[1], b[2]);
         let t1 = x * u + y / v - z * 2.0 + w / 3.0 + (x - w) * (y + u);
@@ -76,7 +77,7 @@ fn mixed_and_first_agree_with_num_dual() {
 struct Coupled;
 
 impl<const N: usize> PairFunction<N> for Coupled {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         let mut sa = D::from(0.0);
         let mut sb = D::from(0.0);
         let mut acc = D::from(0.0);

@@ -26,6 +26,7 @@
 use super::graph::{Graph, Node};
 use super::program::{Binary, Instruction, Program, Unary};
 use super::trace::{self, NotCompiled, Traced};
+use crate::RuntimeInput;
 
 /// The two programs of a pair function: inputs (base, b), outputs at a = 0 as in the module
 /// documentation.
@@ -41,6 +42,9 @@ pub struct PairPrograms {
     /// The guards of the trace ([`super::trace`]): each program ends with one output per guard, the
     /// sign of a difference, valid where it is one of the signs allowed here (bits of `Sign`).
     pub guards: Vec<u8>,
+    /// The runtime inputs of the programs, after (base, b), with their values for the run that traced
+    /// them ([`crate::Scalar::runtime_input`]).
+    pub runtime: Vec<(RuntimeInput, f64)>,
 }
 
 impl PairPrograms {
@@ -51,7 +55,8 @@ impl PairPrograms {
     }
 }
 
-/// Traces f(base, a, b) at (base, 0, b) and returns its programs.
+/// Traces f(base, a, b) at (base, 0, b) and returns its programs, with the step size and the
+/// parameters folded in ([`pair_programs_with_runtime_inputs`] keeps them as inputs).
 ///
 /// The point only matters for what the trace can check there: values that code inspects, and that
 /// f and its derivatives are finite.
@@ -69,22 +74,57 @@ pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> 
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
-    let PairGraph { mut graph, value, da, db, operations, guards } = pair_graph(f, base, b)?;
-    let columns: Vec<Vec<Node>> = (0..N)
-        .map(|j| match graph.input_node(N + j) {
+    programs(pair_graph(f, base, b, false)?)
+}
+
+/// [`pair_programs`] with the runtime inputs f asks for (the step size, a text Lagrangian's
+/// parameters) kept as inputs of the programs, after (base, b): one compiled program then serves
+/// every value of them.
+///
+/// ```
+/// use ddirac::compiled::pair_programs_with_runtime_inputs;
+/// use ddirac::{RuntimeInput, Scalar};
+/// // f = h · b², with h a runtime input.
+/// let f = |_: &[_; 1], _: &[_; 1], b: &[ddirac::compiled::Traced; 1]| {
+///     let h = ddirac::compiled::Traced::runtime_input(RuntimeInput::Step, 0.1).unwrap();
+///     b[0] * b[0] * h
+/// };
+/// let programs = pair_programs_with_runtime_inputs(f, &[0.0], &[3.0]).unwrap();
+/// assert_eq!(programs.runtime, vec![(RuntimeInput::Step, 0.1)]);
+/// let mut out = [0.0; 3];
+/// programs.first.eval(&[0.0, 3.0, 0.5], &mut Vec::new(), &mut out); // h = 0.5 now
+/// assert_eq!(out, [4.5, 0.0, 3.0]);
+/// ```
+pub fn pair_programs_with_runtime_inputs<const N: usize, F>(
+    f: F,
+    base: &[f64; N],
+    b: &[f64; N],
+) -> Result<PairPrograms, NotCompiled>
+where
+    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+{
+    programs(pair_graph(f, base, b, true)?)
+}
+
+/// The two programs of a differentiated pair graph.
+fn programs(pair: PairGraph) -> Result<PairPrograms, NotCompiled> {
+    let n = pair.da.len();
+    let PairGraph { mut graph, value, da, db, operations, guards, runtime } = pair;
+    let columns: Vec<Vec<Node>> = (0..n)
+        .map(|j| match graph.input_node(n + j) {
             Some(b_j) => directional(&mut graph, b_j, &da),
-            None => vec![graph.constant(0.0); N],
+            None => vec![graph.constant(0.0); n],
         })
         .collect();
     let mut roots: Vec<Node> = std::iter::once(value).chain(da).chain(db).collect();
     let mut outputs = roots.clone();
-    outputs.extend((0..N * N).map(|k| columns[k % N][k / N]));
-    check_finite(&graph, &outputs, N)?;
+    outputs.extend((0..n * n).map(|k| columns[k % n][k / n]));
+    check_finite(&graph, &outputs, n)?;
     let signs = guards.iter().map(|(node, _)| *node);
     roots.extend(signs.clone());
     outputs.extend(signs);
     let guards = guards.iter().map(|(_, allowed)| *allowed).collect();
-    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs), operations, guards })
+    Ok(PairPrograms { first: graph.program(&roots), mixed: graph.program(&outputs), operations, guards, runtime })
 }
 
 /// A pair function's value and gradient at a = 0, as nodes of a graph whose inputs are (base, b).
@@ -97,15 +137,23 @@ pub(super) struct PairGraph {
     pub operations: usize,
     /// The guards: the node of each sign and its allowed signs ([`PairPrograms::guards`]).
     pub guards: Vec<(Node, u8)>,
+    /// The runtime inputs, after (base, b) ([`PairPrograms::runtime`]).
+    pub runtime: Vec<(RuntimeInput, f64)>,
 }
 
-/// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above.
-pub(super) fn pair_graph<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<PairGraph, NotCompiled>
+/// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above. With
+/// `runtime`, the runtime inputs f asks for are inputs after (base, b).
+pub(super) fn pair_graph<const N: usize, F>(
+    f: F,
+    base: &[f64; N],
+    b: &[f64; N],
+    runtime: bool,
+) -> Result<PairGraph, NotCompiled>
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
     let point: Vec<f64> = base.iter().chain(&[0.0; N]).chain(b).copied().collect();
-    let trace::Recorded { mut graph, result: y, guards } = trace::trace(&point, |x| {
+    let trace::Recorded { mut graph, result: y, guards, runtime } = trace::trace(&point, runtime, |x| {
         let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
         f(&block(0), &block(1), &block(2))
     })?;
@@ -115,7 +163,8 @@ where
     let mut roots = vec![y];
     roots.extend(gradient(&mut graph, y, &wrt));
     roots.extend(guards.iter().map(|g| g.node));
-    let a_is_zero: Vec<Option<f64>> = (0..3 * N).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
+    let inputs = 3 * N + runtime.len();
+    let a_is_zero: Vec<Option<f64>> = (0..inputs).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
     let (graph, roots) = graph.substitute(&roots, &a_is_zero);
     let guards = guards.iter().zip(&roots[1 + 2 * N..]).map(|(g, &node)| (node, g.allowed)).collect();
     Ok(PairGraph {
@@ -125,6 +174,7 @@ where
         db: roots[1 + N..1 + 2 * N].to_vec(),
         operations,
         guards,
+        runtime,
     })
 }
 

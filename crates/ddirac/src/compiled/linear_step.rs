@@ -42,7 +42,7 @@ const PIVOT_TOLERANCE: f64 = 1e-14;
 
 /// The compiled closed-form step of linear step equations, for N coordinates.
 pub struct LinearStep<const N: usize> {
-    program: NativeProgram,
+    program: std::sync::Arc<NativeProgram>,
     /// Instructions of the step program.
     pub instructions: usize,
 }
@@ -93,11 +93,11 @@ impl<const N: usize> LinearStep<N> {
     where
         F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
     {
-        let Some(program) = step_program(pair_graph(f, base, z)?, momenta, sign, advances, eliminable) else {
+        let Some(program) = step_program(pair_graph(f, base, z, false)?, momenta, sign, advances, eliminable) else {
             return Ok(None);
         };
         let instructions = program.instructions.len();
-        Ok(Some(Self { program: NativeProgram::compile(&program)?, instructions }))
+        Ok(Some(Self { program: super::native(&program)?, instructions }))
     }
 
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are

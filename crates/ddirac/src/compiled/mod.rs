@@ -1,6 +1,7 @@
 //! Compiled derivatives: a Lagrangian traced once into a graph of operations, differentiated
 //! symbolically, simplified, and turned into straight-line native code.
 
+mod cache;
 mod cost;
 mod derivative;
 mod graph;
@@ -10,8 +11,9 @@ mod pair;
 pub mod program;
 pub mod trace;
 
+pub use cache::{native, native_compilations};
 pub use cost::CompileCost;
-pub use derivative::{pair_programs, PairPrograms};
+pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairPrograms};
 pub use jit::{JitError, NativeProgram};
 pub use linear_step::{LinearSolution, LinearStep};
 pub use pair::{CompileError, CompiledPair};

@@ -7,6 +7,7 @@
 //! mixed block, built once per run from a trace of f.
 
 use std::cell::RefCell;
+use std::sync::Arc;
 
 use nalgebra::{SMatrix, SVector};
 
@@ -46,8 +47,8 @@ impl From<JitError> for CompileError {
 /// If the trace of f was guarded (f compares numbers, see [`super::trace`]), the programs hold only
 /// where the guards do: [`CompiledPair::first_or_mixed`] answers `None` elsewhere.
 pub struct CompiledPair<const N: usize> {
-    first: NativeProgram,
-    mixed: NativeProgram,
+    first: Arc<NativeProgram>,
+    mixed: Arc<NativeProgram>,
     /// The allowed signs of each guard ([`PairPrograms::guards`]).
     guards: Vec<u8>,
     /// Instruction counts of the two programs (without, with the mixed block).
@@ -75,13 +76,15 @@ impl<const N: usize> CompiledPair<N> {
         Self::from_programs(&pair_programs(f, base, b)?)
     }
 
-    /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`]); programs
-    /// with other numbers of inputs or outputs are an error.
+    /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`] or
+    /// [`super::pair_programs_with_runtime_inputs`], whose runtime inputs take the values the trace
+    /// recorded), or shares the native code of an earlier run with the same programs
+    /// ([`super::native`]); programs with other numbers of inputs or outputs are an error.
     pub fn from_programs(programs: &PairPrograms) -> Result<Self, CompileError> {
-        let PairPrograms { first, mixed, guards, .. } = programs;
+        let PairPrograms { first, mixed, guards, runtime, .. } = programs;
         let shape = |p: &Program| (p.inputs, p.outputs.len());
-        let g = guards.len();
-        if shape(first) != (2 * N, 1 + 2 * N + g) || shape(mixed) != (2 * N, 1 + 2 * N + N * N + g) {
+        let (g, inputs) = (guards.len(), 2 * N + runtime.len());
+        if shape(first) != (inputs, 1 + 2 * N + g) || shape(mixed) != (inputs, 1 + 2 * N + N * N + g) {
             return Err(CompileError::Native(format!(
                 "the programs do not compute a pair function of {N} coordinates (inputs and outputs {:?} and {:?})",
                 shape(first),
@@ -90,11 +93,14 @@ impl<const N: usize> CompiledPair<N> {
         }
         let instructions = (first.instructions.len(), mixed.instructions.len());
         Ok(Self {
-            first: NativeProgram::compile(first)?,
-            mixed: NativeProgram::compile(mixed)?,
+            first: super::native(first)?,
+            mixed: super::native(mixed)?,
             guards: guards.clone(),
             instructions,
-            buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N + g] }),
+            buffers: RefCell::new(Buffers {
+                inputs: [0.0; N].iter().chain(&[0.0; N]).copied().chain(runtime.iter().map(|(_, v)| *v)).collect(),
+                outputs: vec![0.0; 1 + 2 * N + N * N + g],
+            }),
         })
     }
 
@@ -109,7 +115,7 @@ impl<const N: usize> CompiledPair<N> {
         let mut buffers = self.buffers.borrow_mut();
         let Buffers { inputs, outputs } = &mut *buffers;
         inputs[..N].copy_from_slice(base);
-        inputs[N..].copy_from_slice(b);
+        inputs[N..2 * N].copy_from_slice(b);
         let program = if with_mixed { &self.mixed } else { &self.first };
         let outputs = &mut outputs[..program.outputs()];
         program.call(inputs, outputs);

@@ -172,7 +172,7 @@ impl Instruction {
 
 /// A straight-line program: `inputs` numbers in, one register per instruction, `outputs` read from
 /// registers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct Program {
     /// How many inputs the program reads.
     pub inputs: usize,

@@ -1,6 +1,7 @@
 //! The compiled derivatives against the dual numbers of [`crate::ad`], which compute the same
 //! numbers by a different method: both run the same generic code, at random points.
 
+use crate::Scalar;
 use std::cell::Cell;
 
 use num_dual::{DualNum, DualStruct};
@@ -14,7 +15,7 @@ use crate::{Coordinate, DiscreteLagrangian, Rule, System};
 
 /// A pair function f(base, a, b), generic over the scalar.
 trait Generic<const N: usize> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, base: &[D; N], a: &[D; N], b: &[D; N]) -> D;
+    fn eval<D: Scalar>(&self, base: &[D; N], a: &[D; N], b: &[D; N]) -> D;
 }
 
 /// f(base, ·, ·) at a fixed base, for the dual numbers.
@@ -24,7 +25,7 @@ struct AtBase<'f, G, const N: usize> {
 }
 
 impl<G: Generic<N>, const N: usize> PairFunction<N> for AtBase<'_, G, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.f.eval(&self.base.map(D::from), a, b)
     }
 }
@@ -86,7 +87,7 @@ fn compare<G: Generic<N>, const N: usize>(f: &G, base: [f64; N], b: [f64; N], ra
 struct EveryOperation;
 
 impl Generic<3> for EveryOperation {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, base: &[D; 3], a: &[D; 3], b: &[D; 3]) -> D {
+    fn eval<D: Scalar>(&self, base: &[D; 3], a: &[D; 3], b: &[D; 3]) -> D {
         let x: [D; 3] = std::array::from_fn(|i| base[i] + a[i]);
         let y: [D; 3] = std::array::from_fn(|i| base[i] - b[i] * 0.5);
         let p = x[0] * y[1] - y[0] / (x[1] * x[1] + 2.0) + x[2].mul_add(y[2], x[0]);
@@ -125,7 +126,7 @@ fn every_operation_matches_dual_numbers() {
 struct Local<'s, S>(DiscreteLagrangian<'s, S>);
 
 impl<S: System<N>, const N: usize> Generic<N> for Local<'_, S> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, base: &[D; N], a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, base: &[D; N], a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(base, a, b)
     }
 }

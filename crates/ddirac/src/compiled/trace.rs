@@ -25,6 +25,7 @@ use std::cell::{Cell, RefCell};
 
 use super::graph::{Graph, Node};
 use super::program::{Binary, Unary};
+use crate::RuntimeInput;
 
 /// Why a function could not be compiled (then the caller keeps dual numbers).
 ///
@@ -157,12 +158,15 @@ struct Recording {
     graph: Graph,
     trace: u32,
     guards: Vec<Guard>,
+    /// The runtime inputs made so far with their nodes and values, when the trace keeps them as
+    /// inputs ([`crate::Scalar::runtime_input`]); `None` when it folds them in.
+    runtime: Option<Vec<(RuntimeInput, Node, f64)>>,
     failure: Option<NotCompiled>,
 }
 
 impl Recording {
     fn new(trace: u32) -> Self {
-        Self { graph: Graph::new(), trace, guards: Vec::new(), failure: None }
+        Self { graph: Graph::new(), trace, guards: Vec::new(), runtime: None, failure: None }
     }
 
     fn fail(&mut self, failure: NotCompiled) {
@@ -223,28 +227,70 @@ impl Drop for Restore {
     }
 }
 
-/// A recorded function: its graph, the node of its result and the guards it holds under.
+/// A recorded function: its graph, the node of its result, the guards it holds under and its runtime
+/// inputs.
 pub(super) struct Recorded {
     pub graph: Graph,
     pub result: Node,
     pub guards: Vec<Guard>,
+    /// The runtime inputs the function asked for, in the order of their inputs (after those of
+    /// `point`), with their values at the trace.
+    pub runtime: Vec<(RuntimeInput, f64)>,
 }
 
 /// Runs `f` on one traced input per entry of `point` (recorded with that value) and returns the
-/// recording, or why it cannot be compiled. The inputs are the graph's first nodes, in order.
-pub(super) fn trace(point: &[f64], f: impl FnOnce(&[Traced]) -> Traced) -> Result<Recorded, NotCompiled> {
+/// recording, or why it cannot be compiled. The inputs are the graph's first nodes, in order; with
+/// `runtime`, the runtime inputs `f` asks for ([`crate::Scalar::runtime_input`]) are inputs too,
+/// numbered after them, and are folded in as constants otherwise.
+pub(super) fn trace(
+    point: &[f64],
+    runtime: bool,
+    f: impl FnOnce(&[Traced]) -> Traced,
+) -> Result<Recorded, NotCompiled> {
     let id = TRACES.with(|count| {
         count.set(count.get().wrapping_add(1).max(1));
         count.get()
     });
-    let _restore = Restore(Some(RECORDING.replace(Recording::new(id))));
+    let mut recording = Recording::new(id);
+    recording.runtime = runtime.then(Vec::new);
+    let _restore = Restore(Some(RECORDING.replace(recording)));
     let inputs: Vec<Traced> = point.iter().map(|&value| record([], |g, []| g.input(value))).collect();
     let y = f(&inputs);
     let node = RECORDING.with_borrow_mut(|r| r.operand(y));
     let recording = RECORDING.replace(Recording::new(0));
     match recording.failure {
         Some(failure) => Err(failure),
-        None => Ok(Recorded { graph: recording.graph, result: node, guards: recording.guards }),
+        None => Ok(Recorded {
+            graph: recording.graph,
+            result: node,
+            guards: recording.guards,
+            runtime: recording
+                .runtime
+                .unwrap_or_default()
+                .into_iter()
+                .map(|(input, _, value)| (input, value))
+                .collect(),
+        }),
+    }
+}
+
+/// In a trace that keeps runtime inputs, the input standing for `input` (made on first use with the
+/// value given then).
+impl crate::Scalar for Traced {
+    fn runtime_input(input: RuntimeInput, value: f64) -> Option<Self> {
+        RECORDING.with_borrow_mut(|r| {
+            let Recording { graph, trace, runtime, .. } = r;
+            let runtime = runtime.as_mut()?;
+            let node = match runtime.iter().find(|(made, _, _)| *made == input) {
+                Some(&(_, node, _)) => node,
+                None => {
+                    let node = graph.input(value);
+                    runtime.push((input, node, value));
+                    node
+                }
+            };
+            Some(Traced { node, trace: *trace })
+        })
     }
 }
 

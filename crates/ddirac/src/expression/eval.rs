@@ -12,8 +12,6 @@
 //! differences and operations with a constant update their destination in place when it is their
 //! first operand's register (see the register allocation in `emit`).
 
-use num_dual::DualNum;
-
 use super::functions::{Binary, Scalar, Unary};
 
 /// One instruction; operands and destinations are register indices.
@@ -117,7 +115,7 @@ impl Program {
     /// # Panics
     ///
     /// If `vars.len()` differs from [`Program::variables`].
-    pub fn eval<D: DualNum<Primitive = f64> + Copy>(&self, vars: &[D]) -> D {
+    pub fn eval<D: crate::Scalar>(&self, vars: &[D]) -> D {
         assert_eq!(vars.len(), self.variables, "the program has {} variables", self.variables);
         self.eval_with(|i| vars[i])
     }
@@ -125,7 +123,7 @@ impl Program {
     /// The value with the i-th variable given by `load(i)`, called once for each variable the
     /// expression uses (i < [`Program::variables`]).
     #[inline]
-    pub fn eval_with<D: DualNum<Primitive = f64> + Copy>(&self, load: impl Fn(usize) -> D) -> D {
+    pub fn eval_with<D: crate::Scalar>(&self, load: impl Fn(usize) -> D) -> D {
         let zero = |_| D::from(0.0);
         match self.registers {
             0 => self.run(&mut [], load),
@@ -135,7 +133,7 @@ impl Program {
         }
     }
 
-    fn run<D: DualNum<Primitive = f64> + Copy>(&self, r: &mut [D], load: impl Fn(usize) -> D) -> D {
+    fn run<D: crate::Scalar>(&self, r: &mut [D], load: impl Fn(usize) -> D) -> D {
         for &inst in &self.instructions {
             match inst {
                 Inst::Load { dst, var } => r[dst as usize] = load(var as usize),

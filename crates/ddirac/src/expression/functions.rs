@@ -2,8 +2,6 @@
 //! over the scalar. Constant folding evaluates the same code at f64, so a folded constant equals what
 //! the program would compute.
 
-use num_dual::DualNum;
-
 /// The functions of the language, by name.
 pub const FUNCTIONS: &[&str] = &[
     "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "exp", "ln", "log", "sqrt", "abs",
@@ -73,7 +71,7 @@ pub(super) enum Unary {
 
 impl Unary {
     #[inline(always)]
-    pub(super) fn apply<D: DualNum<Primitive = f64> + Copy>(self, x: D) -> D {
+    pub(super) fn apply<D: crate::Scalar>(self, x: D) -> D {
         match self {
             Unary::Neg => -x,
             Unary::Recip => x.recip(),
@@ -114,7 +112,7 @@ pub(super) enum Binary {
 
 impl Binary {
     #[inline(always)]
-    pub(super) fn apply<D: DualNum<Primitive = f64> + Copy>(self, a: D, b: &D) -> D {
+    pub(super) fn apply<D: crate::Scalar>(self, a: D, b: &D) -> D {
         match self {
             Binary::Add => a + b,
             Binary::Sub => a - b,
@@ -159,7 +157,7 @@ pub(super) enum Scalar {
 
 impl Scalar {
     #[inline(always)]
-    pub(super) fn apply<D: DualNum<Primitive = f64> + Copy>(self, x: D, c: f64) -> D {
+    pub(super) fn apply<D: crate::Scalar>(self, x: D, c: f64) -> D {
         match self {
             Scalar::Add => x + c,
             Scalar::Mul => x * c,

@@ -70,13 +70,24 @@ pub struct ExpressionSpec {
 pub struct ExpressionSystem<const N: usize> {
     coordinates: [Coordinate; N],
     lagrangian: Program,
+    open: OpenLagrangian,
     exact: Vec<Option<Program>>,
+}
+
+/// The Lagrangian with its parameters as variables after q and q̇, for traces that keep them as
+/// runtime inputs ([`crate::RuntimeInput::Parameter`]), so that one compiled program serves every
+/// value of them; and the parameters' values.
+#[derive(Debug, Clone, PartialEq)]
+struct OpenLagrangian {
+    program: Program,
+    parameters: Vec<f64>,
 }
 
 /// A checked and compiled spec, before its dimension is fixed.
 struct Compiled {
     coordinates: Vec<Coordinate>,
     lagrangian: Program,
+    open: OpenLagrangian,
     exact: Vec<Option<Program>>,
 }
 
@@ -93,7 +104,7 @@ impl<const N: usize> ExpressionSystem<N> {
         let found = compiled.coordinates.len();
         let coordinates =
             compiled.coordinates.try_into().map_err(|_| ExpressionError::Dimension { expected: N, found })?;
-        Ok(Self { coordinates, lagrangian: compiled.lagrangian, exact: compiled.exact })
+        Ok(Self { coordinates, lagrangian: compiled.lagrangian, open: compiled.open, exact: compiled.exact })
     }
 
     /// The compiled Lagrangian; its variables are q_0 … q_{N−1}, then their velocities.
@@ -107,7 +118,19 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
         self.coordinates.clone()
     }
 
-    fn lagrangian<D: num_dual::DualNum<Primitive = f64> + Copy>(&self, q: &[D; N], v: &[D; N]) -> D {
+    /// With the parameters folded in, or, in a trace that keeps them as runtime inputs, read from
+    /// those.
+    fn lagrangian<D: crate::Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
+        let parameters = &self.open.parameters;
+        let runtime = |k: usize| D::runtime_input(crate::RuntimeInput::Parameter(k), parameters[k]);
+        if !parameters.is_empty() && runtime(0).is_some() {
+            let values: Vec<D> = (0..parameters.len()).map(|k| runtime(k).unwrap_or(D::from(parameters[k]))).collect();
+            return self.open.program.eval_with(|i| match i {
+                _ if i < N => q[i],
+                _ if i < 2 * N => v[i - N],
+                _ => values[i - 2 * N],
+            });
+        }
         self.lagrangian.eval_with(|i| if i < N { q[i] } else { v[i - N] })
     }
 
@@ -168,7 +191,15 @@ fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
         lagrangian = lagrangian.definition(name, source);
         exact = exact.unavailable(name, "definitions are not available in exact solutions");
     }
+    let mut open = lagrangian.clone();
+    for (name, _) in &spec.parameters {
+        open = open.variable(name);
+    }
     let lagrangian = lagrangian.compile(Origin::Lagrangian, &spec.lagrangian)?;
+    let open = OpenLagrangian {
+        program: open.compile(Origin::Lagrangian, &spec.lagrangian)?,
+        parameters: spec.parameters.iter().map(|(_, v)| *v).collect(),
+    };
 
     let mut solutions: Vec<Option<Program>> = vec![None; spec.coordinates.len()];
     for (name, source) in &spec.exact_solution {
@@ -188,7 +219,7 @@ fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
         }
         solutions[i] = Some(exact.compile(origin, source)?);
     }
-    Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, exact: solutions })
+    Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions })
 }
 
 /// Checks that every declared name is an identifier, not a function, and declared once.

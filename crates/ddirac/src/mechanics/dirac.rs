@@ -13,8 +13,8 @@
 //!
 //! The unknowns are the chart increments z = q_{k+1} − q_k.
 
+use crate::Scalar;
 use nalgebra::SVector;
-use num_dual::DualNum;
 
 use crate::scheme::{Scheme, StepEquations};
 use crate::{DiscreteLagrangian, System};
@@ -31,7 +31,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
 
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         self.ld.eval_local(base, a, b)

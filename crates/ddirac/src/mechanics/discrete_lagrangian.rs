@@ -12,12 +12,12 @@
 //! velocity (δ1 − δ0)/h is formed from small offsets and never loses digits to a large base value
 //! (paper §6, retraction-compatible charts).
 
+use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
-use num_dual::DualNum;
 
 use crate::ad::{self, PairFunction};
 
-use crate::System;
+use crate::{RuntimeInput, System};
 
 /// The quadrature rule that turns L(q, v) into L_d(q0, q1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -102,13 +102,24 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
     pub fn eval_local<D, B, const N: usize>(&self, base: &[B; N], d0: &[D; N], d1: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         let h = self.step;
+        // In a trace that keeps it as an input, h is a number of the program; otherwise a constant.
+        let step = D::runtime_input(RuntimeInput::Step, h);
+        let reciprocal = step.map(|h| h.recip());
+        let over_h = |x: D| match reciprocal {
+            Some(r) => x * r,
+            None => x * h.recip(),
+        };
+        let times_h = |x: D, weight: f64| match step {
+            Some(h) => x * (h * weight),
+            None => x * (weight * h),
+        };
         let mut v = *d1;
         for (v, d0) in v.iter_mut().zip(d0) {
-            *v = (*v - *d0) * h.recip();
+            *v = over_h(*v - *d0);
         }
         let at = |weight0: f64, weight1: f64| -> [D; N] {
             let mut q = *d0;
@@ -119,10 +130,10 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
         };
         let l = |q: &[D; N]| self.system.lagrangian(q, &v);
         match self.rule {
-            Rule::Left => l(&at(1.0, 0.0)) * h,
-            Rule::Right => l(&at(0.0, 1.0)) * h,
-            Rule::Midpoint => l(&at(0.5, 0.5)) * h,
-            Rule::Trapezoid => (l(&at(1.0, 0.0)) + l(&at(0.0, 1.0))) * (0.5 * h),
+            Rule::Left => times_h(l(&at(1.0, 0.0)), 1.0),
+            Rule::Right => times_h(l(&at(0.0, 1.0)), 1.0),
+            Rule::Midpoint => times_h(l(&at(0.5, 0.5)), 1.0),
+            Rule::Trapezoid => times_h(l(&at(1.0, 0.0)) + l(&at(0.0, 1.0)), 0.5),
         }
     }
 
@@ -130,7 +141,7 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
     pub fn eval<D, const N: usize>(&self, q0: &[D; N], q1: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: Scalar,
     {
         self.eval_local(&[0.0f64; N], q0, q1)
     }
@@ -189,7 +200,7 @@ struct Local<'l, 'a, S, const N: usize> {
 }
 
 impl<S: System<N>, const N: usize> PairFunction<N> for Local<'_, '_, S, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.ld.eval_local(self.base, a, b)
     }
 }

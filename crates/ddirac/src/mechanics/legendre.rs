@@ -4,8 +4,8 @@
 //! not determined by the momentum; [`velocity`] then returns one velocity compatible with it, and H
 //! does not depend on the choice as long as p lies on the primary constraint p = ∂L/∂v.
 
+use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
-use num_dual::DualNum;
 
 use crate::ad::{self, PairFunction};
 use crate::linalg::Factorization;
@@ -20,7 +20,7 @@ struct AtVelocity<'a, S, const N: usize> {
 }
 
 impl<S: System<N>, const N: usize> PairFunction<N> for AtVelocity<'_, S, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         let q = self.q.map(D::from);
         let mut v = *a;
         for ((v, b), v0) in v.iter_mut().zip(b).zip(self.v) {

@@ -30,8 +30,9 @@
 //! variables are reported: the interior q_k (q_0 and q_N are fixed), every q_k^+ (or q_{k+1}^−) and
 //! every p_{k+1} (or p_k).
 
+use crate::Scalar;
 use nalgebra::{Const, U1};
-use num_dual::{DualNum, DualSVec64};
+use num_dual::DualSVec64;
 
 use crate::reduction::dirac_structure::Signs;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
@@ -169,7 +170,7 @@ pub fn energy_plus<S, D, const N: usize>(
 ) -> D
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     ld.eval(q0, q0_plus) + pairing(p1, q1, q0_plus)
 }
@@ -186,7 +187,7 @@ pub fn energy_minus<S, D, const N: usize>(
 ) -> D
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     ld.eval(q1_minus, q1) + pairing(p0, q0, q1_minus) * signs.factor()
 }
@@ -203,7 +204,7 @@ pub fn reduced_energy_plus<S, D, const N: usize>(
 ) -> Result<D, Error>
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     let (n_x, n_g) = (reduction.split.n_x(), reduction.split.n_g());
     check_lengths(&[(x0.len(), n_x), (plus.0.len(), n_x), (plus.1.len(), n_g), (q1.0.len(), n_x)])?;
@@ -228,7 +229,7 @@ pub fn reduced_energy_minus<S, D, const N: usize>(
 ) -> Result<D, Error>
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     let (n_x, n_g) = (reduction.split.n_x(), reduction.split.n_g());
     check_lengths(&[(minus.0.len(), n_x), (minus.1.len(), n_g), (x1.len(), n_x), (w0.len(), n_x)])?;
@@ -407,7 +408,7 @@ fn e_plus<S, D, const N: usize>(
 ) -> D
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     let x0 = shape_only(reduction, q0);
     let l = reduction.l_plus(&x0_gamma(reduction, &x0, plus), plus);
@@ -435,7 +436,7 @@ fn e_minus<S, D, const N: usize>(
 ) -> D
 where
     S: System<N>,
-    D: DualNum<Primitive = f64> + Copy,
+    D: Scalar,
 {
     let x1 = shape_only(reduction, q1);
     let l = reduction.l_minus(minus, &x1);
@@ -452,11 +453,7 @@ where
 }
 
 /// (Kᵀ μ)_i with μ at the group positions of a packed block.
-fn kt_times<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
-    i: usize,
-    packed: &[D; N],
-) -> D {
+fn kt_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, i: usize, packed: &[D; N]) -> D {
     reduction
         .split
         .group
@@ -466,10 +463,7 @@ fn kt_times<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
 }
 
 /// The shape entries of a packed block, with zeros at the group positions.
-fn shape_only<S, D: DualNum<Primitive = f64> + Copy, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
-    packed: &[D; N],
-) -> [D; N] {
+fn shape_only<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, packed: &[D; N]) -> [D; N] {
     let mut out = [D::from(0.0); N];
     reduction.split.shape.iter().for_each(|&si| out[si] = packed[si]);
     out
@@ -483,7 +477,7 @@ fn x0_gamma<S, D: Copy, const N: usize>(reduction: &ReducedLagrangian<'_, S>, x0
 }
 
 /// ⟨p, a − b⟩.
-fn pairing<D: DualNum<Primitive = f64> + Copy, const N: usize>(p: &[D; N], a: &[D; N], b: &[D; N]) -> D {
+fn pairing<D: Scalar, const N: usize>(p: &[D; N], a: &[D; N], b: &[D; N]) -> D {
     (0..N).fold(D::from(0.0), |acc, i| acc + p[i] * (a[i] - b[i]))
 }
 

@@ -29,8 +29,8 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
+use crate::Scalar;
 use nalgebra::SVector;
-use num_dual::DualNum;
 
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Scheme, StepEquations};
@@ -55,7 +55,7 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
     pub(crate) fn lhat<D, B, const N: usize>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         let mut shifted = *a;
@@ -106,7 +106,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
 
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         self.lhat(base, a, b)

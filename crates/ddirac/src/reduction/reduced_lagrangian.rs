@@ -11,7 +11,7 @@
 //! with γ the group argument (g1 of the paper for l₊, g0 for l₋).
 //!
 
-use num_dual::DualNum;
+use crate::Scalar;
 
 use crate::mechanics::pontryagin::block_gradient;
 use crate::reduction::trivialization::SplitVector;
@@ -80,7 +80,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub fn lagrangian_plus<D, const N: usize>(&self, x0: &[D], x1: &[D], gamma: &[D]) -> Result<D, Error>
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: Scalar,
     {
         self.check_sizes(&[("x0", x0.len(), true), ("x1", x1.len(), true), ("gamma", gamma.len(), false)])?;
         let zero = D::from(0.0);
@@ -93,7 +93,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub fn lagrangian_minus<D, const N: usize>(&self, x0: &[D], gamma: &[D], x1: &[D]) -> Result<D, Error>
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: Scalar,
     {
         self.check_sizes(&[("x0", x0.len(), true), ("x1", x1.len(), true), ("gamma", gamma.len(), false)])?;
         let zero = D::from(0.0);
@@ -151,7 +151,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub(crate) fn l_plus<D, const N: usize>(&self, a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: Scalar,
     {
         self.l_plus_in_place(&[0.0f64; N], *a, *b)
     }
@@ -161,7 +161,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub(crate) fn l_minus<D, const N: usize>(&self, a: &[D; N], b: &[D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy,
+        D: Scalar,
     {
         self.l_minus_in_place(&[0.0f64; N], *a, *b)
     }
@@ -172,7 +172,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub(crate) fn l_plus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
@@ -186,7 +186,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     pub(crate) fn l_minus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
     where
         S: System<N>,
-        D: DualNum<Primitive = f64> + Copy + std::ops::Add<B, Output = D>,
+        D: Scalar + std::ops::Add<B, Output = D>,
         B: Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
@@ -198,12 +198,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
 
     /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks; `None` when row j of K
     /// is zero.
-    pub(crate) fn k_row<D: DualNum<Primitive = f64> + Copy, const N: usize>(
-        &self,
-        j: usize,
-        u: &[D; N],
-        v: &[D; N],
-    ) -> Option<D> {
+    pub(crate) fn k_row<D: Scalar, const N: usize>(&self, j: usize, u: &[D; N], v: &[D; N]) -> Option<D> {
         let mut acc: Option<D> = None;
         for (i, &si) in self.split.shape.iter().enumerate() {
             let kji = self.connection.entry(j, i);

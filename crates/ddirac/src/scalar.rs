@@ -1,0 +1,73 @@
+//! The scalar the engine evaluates Lagrangians on.
+//!
+//! A Lagrangian is written against num-dual's [`DualNum`] and runs on every [`Scalar`]: `f64`, the
+//! engine's own dual numbers ([`crate::ad`]), num-dual's numbers and the recording number of compiled
+//! derivatives ([`crate::compiled::Traced`]). What `Scalar` adds is what tracing needs to keep a
+//! number a *runtime input* of the compiled program instead of folding it in: the step size h of a
+//! discrete Lagrangian and the parameters of a text Lagrangian. On every scalar but a traced one,
+//! [`Scalar::runtime_input`] is `None` and the code computes with the plain `f64`, exactly as before.
+//!
+//! A system implements [`crate::System::lagrangian`] for `D: DualNum<Primitive = f64> + Copy` (a
+//! weaker bound than the trait's `D: Scalar`, which Rust accepts), so user code never names
+//! `Scalar`.
+
+use num_dual::DualNum;
+
+/// A number whose value a traced program reads at run time rather than folding it in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RuntimeInput {
+    /// The step size h of the discrete Lagrangian.
+    Step,
+    /// The k-th parameter of a text Lagrangian ([`crate::expression::ExpressionSpec::parameters`]).
+    Parameter(usize),
+}
+
+/// A scalar a Lagrangian can be evaluated on (see the module documentation).
+///
+/// ```
+/// use ddirac::{RuntimeInput, Scalar};
+/// // Outside a trace every scalar computes with the plain value.
+/// assert_eq!(<f64 as Scalar>::runtime_input(RuntimeInput::Step, 0.01), None);
+/// ```
+pub trait Scalar: DualNum<Primitive = f64> + Copy {
+    /// The number standing for `input` (whose value is `value`) in a trace that keeps it as an input
+    /// of the compiled program; `None` on every other scalar, and in traces that fold it.
+    #[inline(always)]
+    fn runtime_input(_input: RuntimeInput, _value: f64) -> Option<Self> {
+        None
+    }
+}
+
+impl Scalar for f64 {}
+
+/// num-dual's own numbers over `f64`.
+macro_rules! num_dual_scalars {
+    ($($t:ident<$($p:ident),*>),*) => {$(
+        impl<$($p),*> Scalar for num_dual::$t<$($p),*> where Self: DualNum<Primitive = f64> + Copy {}
+    )*};
+}
+
+num_dual_scalars!(Dual<T>, Dual2<T>, Dual3<T>, HyperDual<T>, HyperHyperDual<T>, Real<T>);
+
+impl<T: nalgebra::Scalar, D: nalgebra::Dim> Scalar for num_dual::DualVec<T, D>
+where
+    Self: DualNum<Primitive = f64> + Copy,
+    nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<D>,
+{
+}
+
+impl<T: nalgebra::Scalar, D: nalgebra::Dim> Scalar for num_dual::Dual2Vec<T, D>
+where
+    Self: DualNum<Primitive = f64> + Copy,
+    nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<nalgebra::U1, D> + nalgebra::allocator::Allocator<D, D>,
+{
+}
+
+impl<T: nalgebra::Scalar, M: nalgebra::Dim, N: nalgebra::Dim> Scalar for num_dual::HyperDualVec<T, M, N>
+where
+    Self: DualNum<Primitive = f64> + Copy,
+    nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<M>
+        + nalgebra::allocator::Allocator<nalgebra::U1, N>
+        + nalgebra::allocator::Allocator<M, N>,
+{
+}
