@@ -133,6 +133,9 @@ fn evaluate(expr: &Expr, at: &[f64; 3], scale: &mut f64) -> Option<f64> {
                 "asin" | "acos" if a.abs() > 0.99 => return None,
                 "sqrt" | "ln" | "log" if a < 1e-3 => return None,
                 "atan2" if a.hypot(b) < 1e-3 => return None,
+                // On its branch cut (y = ±0, x < 0) atan2 jumps by 2π with the sign of a zero, which
+                // exact rewrites such as −(u − v) = v − u may flip.
+                "atan2" if a.abs() < 1e-3 && b < 0.0 => return None,
                 "tan" if a.cos().abs() < 1e-3 => return None,
                 "sin" => a.sin(),
                 "cos" => a.cos(),

@@ -4,4 +4,3 @@
 pub(crate) mod dirac;
 pub mod discrete_lagrangian;
 pub mod legendre;
-pub mod pontryagin;

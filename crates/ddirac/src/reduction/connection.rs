@@ -91,9 +91,21 @@ impl Connection {
         (0..self.n_g()).map(|j| (0..self.n_x()).map(|i| self.k[(j, i)] * x[i]).sum()).collect()
     }
 
-    /// Kᵀ μ = h*_{d,Σ}(μ).
-    pub fn transpose_apply(&self, mu: &[f64]) -> Vec<f64> {
-        (0..self.n_x()).map(|i| (0..self.n_g()).map(|j| self.k[(j, i)] * mu[j]).sum()).collect()
+    /// h*_{d,Σ}(μ) = Kᵀ μ ∈ Σ*, the pull-back of μ ∈ 𝔤* by h_{d,Σ}, written into `out`: μ has one entry
+    /// per group coordinate, `out` one per shape coordinate. This is the only place Kᵀμ is formed; the
+    /// reduced momenta w = p_x + Kᵀ p_g of λ̂_d use it.
+    ///
+    /// ```
+    /// use ddirac::Connection;
+    /// let k = Connection::new(&[vec![1.0, 2.0], vec![3.0, 4.0]], 2, 2).unwrap();
+    /// let mut w = [0.0; 2];
+    /// k.transpose_apply(&[1.0, -1.0], &mut w);
+    /// assert_eq!(w, [1.0 - 3.0, 2.0 - 4.0]);
+    /// ```
+    pub fn transpose_apply(&self, mu: &[f64], out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate().take(self.n_x()) {
+            *o = (0..self.n_g()).map(|j| self.k[(j, i)] * mu[j]).sum();
+        }
     }
 
     /// ω_d(q0, q1) = g1 − g0 − K (x1 − x0), with q = (x, g).

@@ -20,8 +20,11 @@
 //! momentum term. The signs above follow from the reduced (−) Dirac structure and Dirac differential
 //! (`prop:reduceddiractructurelocalminus`, `prop:reduceddiracdifferentiallocalminus`) with Lemma
 //! `lemma:partialderivativesldminus`; with the printed signs the charged particle of §7 runs
-//! backwards in time (θ̇ = −1, z(20) = −20). The reduced Dirac structures and differentials in
-//! [`crate::reduction::dirac_structure`] state the equations independently, and a test checks both.
+//! backwards in time (θ̇ = −1, z(20) = −20). The `ddirac-oracle` crate transcribes the reduced Dirac
+//! structures and differentials and both forms of the display independently, and its tests hold the
+//! runs of this scheme against them.
+//!
+//! The momenta (w, μ) = λ̂_d(q, p) are [`crate::reduction::trivialization`]'s.
 //!
 //! Unknowns z (stored at the coordinates' own positions): Δx = x_{k+1} − x_k at the shape
 //! positions and γ_k at the group positions. A step solves the first two equations by Newton's
@@ -33,6 +36,7 @@ use crate::Scalar;
 use nalgebra::SVector;
 
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
+use crate::reduction::trivialization::{lambda_hat, lambda_hat_inv};
 use crate::scheme::{Scheme, StepEquations};
 use crate::{System, Variant};
 
@@ -40,7 +44,7 @@ use crate::{System, Variant};
 pub(crate) struct LagrangePoincareDirac<'a, S> {
     reduction: ReducedLagrangian<'a, S>,
     variant: Variant,
-    /// Whether the connection K is zero (then K(x1 − x0) and Kᵀμ vanish).
+    /// Whether the connection K is zero (then K(x1 − x0) and Kᵀμ vanish, and λ̂_d is the identity).
     flat: bool,
 }
 
@@ -78,19 +82,6 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
             .iter()
             .enumerate()
             .map(|(i, &si)| self.reduction.connection.entry(j, i) * dx_full[si])
-            .sum()
-    }
-
-    fn kt_mu(&self, i: usize, mu_full: &[f64]) -> f64 {
-        if self.flat {
-            return 0.0;
-        }
-        self.reduction
-            .split
-            .group
-            .iter()
-            .enumerate()
-            .map(|(j, &gj)| self.reduction.connection.entry(j, i) * mu_full[gj])
             .sum()
     }
 }
@@ -144,22 +135,19 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         z
     }
 
+    /// (w, μ) = λ̂_d(q, p).
     fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N] {
-        let mut wm = *p;
-        for (i, &si) in self.reduction.split.shape.iter().enumerate() {
-            wm[si] = p[si] + self.kt_mu(i, p);
+        if self.flat {
+            return *p;
         }
-        wm
+        lambda_hat(&self.reduction.connection, &self.reduction.split, p)
     }
 
+    /// p = λ̂_d⁻¹(q, w, μ).
     fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
         if self.flat {
             return *wm;
         }
-        let mut p = *wm;
-        for (i, &si) in self.reduction.split.shape.iter().enumerate() {
-            p[si] = wm[si] - self.kt_mu(i, wm);
-        }
-        p
+        lambda_hat_inv(&self.reduction.connection, &self.reduction.split, wm)
     }
 }

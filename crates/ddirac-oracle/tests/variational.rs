@@ -6,13 +6,13 @@
 //! Gradients are measured relative to `ActionGradient::scale`, the largest entry of any single term's
 //! gradient (the size of the quantities that cancel, |p| and |D_i L_d|).
 
-use ddirac::mechanics::pontryagin::*;
-use ddirac::reduction::dirac_structure::Signs;
 use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};
 use ddirac::{
     solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Solution, Split, System, Variant,
 };
+use ddirac_oracle::dirac_structure::Signs;
+use ddirac_oracle::pontryagin::*;
 
 mod common;
 use common::sampler;

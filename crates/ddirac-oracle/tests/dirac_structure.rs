@@ -3,11 +3,12 @@
 //! eq:geometricequations and the corrected eq:geometricequationsminus, and NOT the printed
 //! eq:geometricequationsminus. Lemmas partialderivativesld(minus) are checked against AD of L_d.
 
-use ddirac::reduction::dirac_structure::*;
 use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
-use ddirac::reduction::trivialization::SplitVector;
 use ddirac::systems::{ChargedParticle, TwoBody};
 use ddirac::{solve, Connection, InitialMomentum, Method, OutputOptions, Problem, Rule, Split, System, Variant};
+use ddirac_oracle::dirac_structure::*;
+use ddirac_oracle::reduced_lagrangian::{ld_partials, partials_minus, partials_plus};
+use ddirac_oracle::trivialization::SplitVector;
 
 mod common;
 use common::sampler;
@@ -93,8 +94,8 @@ fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, k: &[Vec<f64>]
     let (mut dirac, mut general) = (0.0f64, 0.0f64);
     for pair in points.windows(2) {
         let (step, gamma) = step_plus(k, &pair[0], &pair[1]);
-        dirac = dirac.max(reduction.dirac_residual_plus(&step, &pair[1].x, &gamma).unwrap() / scale);
-        general = general.max(reduction.general_form_plus(&step, &pair[1].x, &gamma).unwrap().max_abs() / scale);
+        dirac = dirac.max(dirac_residual_plus(reduction, &step, &pair[1].x, &gamma).unwrap() / scale);
+        general = general.max(general_form_plus(reduction, &step, &pair[1].x, &gamma).unwrap().max_abs() / scale);
     }
     (dirac, general)
 }
@@ -110,8 +111,8 @@ fn check_minus<S: System<4>>(
     let (mut dirac, mut corrected, mut printed_min) = (0.0f64, 0.0f64, f64::INFINITY);
     for pair in points.windows(2) {
         let (step, gamma) = step_minus(k, &pair[0], &pair[1]);
-        dirac = dirac.max(reduction.dirac_residual_minus(&step, &pair[0].x, &gamma).unwrap() / scale);
-        let form = |signs| reduction.general_form_minus(&step, &pair[0].x, &gamma, signs).unwrap().max_abs() / scale;
+        dirac = dirac.max(dirac_residual_minus(reduction, &step, &pair[0].x, &gamma).unwrap() / scale);
+        let form = |signs| general_form_minus(reduction, &step, &pair[0].x, &gamma, signs).unwrap().max_abs() / scale;
         corrected = corrected.max(form(Signs::Corrected));
         let momenta = pair.iter().flat_map(|p| p.w.iter().chain(&p.mu)).fold(0.0f64, |m, v| m.max(v.abs()));
         printed_min = printed_min.min(form(Signs::AsPrinted) * scale / momenta);
@@ -197,18 +198,18 @@ fn lemmas_on_partial_derivatives_hold_for_a_general_connection() {
         let x0 = vec![1.0 + 0.3 * u(), 0.2 * u()];
         let x1 = vec![1.0 + 0.3 * u(), 0.2 * u()];
         let g = vec![0.5 * u(), 0.5 * u()];
-        let (d1, d2) = reduction.ld_partials_from_plus(&x0, &x1, &g).unwrap();
+        let (d1, d2) = ld_partials_from_plus(&reduction, &x0, &x1, &g).unwrap();
         let q1g: Vec<f64> = g.iter().zip(k_dx(&k, &x0, &x1)).map(|(a, b)| a + b).collect();
-        let (e1, e2) = reduction
-            .ld_partials(&SplitVector::new(x0.clone(), vec![0.0; 2]), &SplitVector::new(x1.clone(), q1g))
-            .unwrap();
+        let (e1, e2) =
+            ld_partials(&reduction, &SplitVector::new(x0.clone(), vec![0.0; 2]), &SplitVector::new(x1.clone(), q1g))
+                .unwrap();
         assert_close(&d1, &e1, 1e-12);
         assert_close(&d2, &e2, 1e-12);
 
-        let (d1, d2) = reduction.ld_partials_from_minus(&x0, &g, &x1).unwrap();
+        let (d1, d2) = ld_partials_from_minus(&reduction, &x0, &g, &x1).unwrap();
         let q0g: Vec<f64> = g.iter().zip(k_dx(&k, &x1, &x0)).map(|(a, b)| a + b).collect();
         let (e1, e2) =
-            reduction.ld_partials(&SplitVector::new(x0.clone(), q0g), &SplitVector::new(x1, vec![0.0; 2])).unwrap();
+            ld_partials(&reduction, &SplitVector::new(x0.clone(), q0g), &SplitVector::new(x1, vec![0.0; 2])).unwrap();
         assert_close(&d1, &e1, 1e-12);
         assert_close(&d2, &e2, 1e-12);
     }
@@ -248,7 +249,7 @@ fn general_forms_agree_with_the_simplified_equations() {
         let (x0, x1, gamma) = (vec![1.0 + 0.3 * u(), 0.2 * u()], vec![1.0 + 0.3 * u(), 0.2 * u()], vec![u(), u()]);
         let neg = |v: &[f64]| v.iter().map(|a| -a).collect::<Vec<f64>>();
 
-        let l = reduction.partials_plus(&x0, &x1, &gamma).unwrap();
+        let l = partials_plus(&reduction, &x0, &x1, &gamma).unwrap();
         let g1: Vec<f64> = gamma.iter().zip(k_dx(&k, &x0, &x1)).map(|(a, b)| a + b).collect();
         let step = ReducedStepPlus {
             x0: x0.clone(),
@@ -259,13 +260,13 @@ fn general_forms_agree_with_the_simplified_equations() {
             mu1: l.gamma.clone(),
         };
         let scale = 1.0 + l.x0.iter().chain(&l.x1).chain(&l.gamma).fold(0.0f64, |m, v| m.max(v.abs()));
-        assert!(reduction.general_form_plus(&step, &x1, &gamma).unwrap().max_abs() < 1e-13 * scale);
-        assert!(reduction.dirac_residual_plus(&step, &x1, &gamma).unwrap() < 1e-13 * scale);
+        assert!(general_form_plus(&reduction, &step, &x1, &gamma).unwrap().max_abs() < 1e-13 * scale);
+        assert!(dirac_residual_plus(&reduction, &step, &x1, &gamma).unwrap() < 1e-13 * scale);
         let mut wrong = step.clone();
         wrong.w0[0] += 1e-3;
-        assert!(reduction.general_form_plus(&wrong, &x1, &gamma).unwrap().max_abs() > 0.9e-3);
+        assert!(general_form_plus(&reduction, &wrong, &x1, &gamma).unwrap().max_abs() > 0.9e-3);
 
-        let l = reduction.partials_minus(&x0, &gamma, &x1).unwrap();
+        let l = partials_minus(&reduction, &x0, &gamma, &x1).unwrap();
         let rel: Vec<f64> = gamma.iter().zip(k_dx(&k, &x0, &x1)).map(|(a, b)| a - b).collect();
         let step = ReducedStepMinus {
             q0: SplitVector::new(x0.clone(), rel),
@@ -276,9 +277,9 @@ fn general_forms_agree_with_the_simplified_equations() {
             mu1: neg(&l.gamma),
         };
         let scale = 1.0 + l.x0.iter().chain(&l.x1).chain(&l.gamma).fold(0.0f64, |m, v| m.max(v.abs()));
-        let form = |signs| reduction.general_form_minus(&step, &x0, &gamma, signs).unwrap().max_abs();
+        let form = |signs| general_form_minus(&reduction, &step, &x0, &gamma, signs).unwrap().max_abs();
         assert!(form(Signs::Corrected) < 1e-13 * scale);
-        assert!(reduction.dirac_residual_minus(&step, &x0, &gamma).unwrap() < 1e-13 * scale);
+        assert!(dirac_residual_minus(&reduction, &step, &x0, &gamma).unwrap() < 1e-13 * scale);
         assert!(form(Signs::AsPrinted) > 1e-3);
     }
 }

@@ -20,24 +20,25 @@
 //! *Erratum.* Stationarity of S⁻ as printed gives p_k = D1 L_d(q_{k+1}^−, q_{k+1}) and
 //! p_{k+1} = −D2 L_d(q_{k+1}^−, q_{k+1}): the (−) Lagrange–Dirac equations of paper §2.3.2 with the
 //! momenta reversed (the same slip as in eq:geometricequationsminus, see
-//! [`crate::reduction::dirac_structure`]). With ⟨p0, q1^− − q0⟩ instead, stationarity is exactly
+//! [`crate::dirac_structure`]). With ⟨p0, q1^− − q0⟩ instead, stationarity is exactly
 //! p_k = −D1 L_d, p_{k+1} = D2 L_d. [`Signs`] selects the printed or the corrected pairing sign in
 //! E_{d−}, e_{d−} and S⁻.
 //!
 //! Gradients are assembled term by term: each term's gradient with respect to its four blocks of N
-//! local arguments comes from forward-mode automatic differentiation (`DualSVec64<N>`, one pass per
-//! block), and is added into the entries of the variables the block stands for. Only the free
+//! local arguments comes from forward-mode automatic differentiation (the engine's
+//! [`ddirac::ad::Gradient`], one pass per block), and is added into the entries of the variables the
+//! block stands for. Only the free
 //! variables are reported: the interior q_k (q_0 and q_N are fixed), every q_k^+ (or q_{k+1}^−) and
 //! every p_{k+1} (or p_k).
 
-use crate::Scalar;
-use nalgebra::{Const, U1};
-use num_dual::DualSVec64;
+use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
+use ddirac::Scalar;
+use ddirac::{Connection, DiscreteLagrangian, Error, Split, System};
 
-use crate::reduction::dirac_structure::Signs;
-use crate::reduction::reduced_lagrangian::ReducedLagrangian;
-use crate::reduction::trivialization::{lambda_d, lambda_hat, lambda_tilde, SplitVector};
-use crate::{Connection, DiscreteLagrangian, Error, Split, System};
+use crate::dirac_structure::Signs;
+use crate::gradient::{block_gradient, Dual};
+use crate::reduced_lagrangian::{l_minus, l_plus, pack};
+use crate::trivialization::{lambda_d, lambda_hat, lambda_tilde, SplitVector};
 
 /// A curve on the (+) discrete Pontryagin bundle: q_0 … q_N, q_0^+ … q_{N−1}^+, p_1 … p_N.
 ///
@@ -93,7 +94,7 @@ impl<const N: usize> PlusCurve<N> {
     /// ```
     /// let q = vec![vec![0.0], vec![1.0], vec![3.0]];
     /// let p = vec![vec![1.0], vec![2.0], vec![2.0]];
-    /// let curve = ddirac::mechanics::pontryagin::PlusCurve::<1>::from_trajectory(&q, &p).unwrap();
+    /// let curve = ddirac_oracle::pontryagin::PlusCurve::<1>::from_trajectory(&q, &p).unwrap();
     /// assert_eq!((curve.q_plus, curve.p_next), (vec![[1.0], [3.0]], vec![[2.0], [2.0]]));
     /// ```
     pub fn from_trajectory(q: &[Vec<f64>], p: &[Vec<f64>]) -> Result<Self, Error> {
@@ -154,7 +155,8 @@ impl<const N: usize> MinusCurve<N> {
 /// E_{d+}(q0, q0^+, q1, p1) = L_d(q0, q0^+) + ⟨p1, q1 − q0^+⟩ (eq:Ed), generic over the scalar.
 ///
 /// ```
-/// use ddirac::{mechanics::pontryagin::energy_plus, systems::ChargedParticle, DiscreteLagrangian, Rule};
+/// use ddirac::{systems::ChargedParticle, DiscreteLagrangian, Rule};
+/// use ddirac_oracle::pontryagin::energy_plus;
 /// let system = ChargedParticle::default();
 /// let ld = DiscreteLagrangian::new(&system, Rule::Left, 0.1);
 /// let (q0, q1) = ([0.0; 4], [0.0, 0.0, 0.1, 0.0]);
@@ -210,8 +212,8 @@ where
     check_lengths(&[(x0.len(), n_x), (plus.0.len(), n_x), (plus.1.len(), n_g), (q1.0.len(), n_x)])?;
     check_lengths(&[(q1.1.len(), n_g), (w1.len(), n_x), (mu1.len(), n_g)])?;
     let zero = D::from(0.0);
-    let pack = |x: &[D], g: &[D]| reduction.pack::<D, N>(x, g, zero);
-    Ok(e_plus(reduction, &pack(x0, &[]), &pack(plus.0, plus.1), &pack(q1.0, q1.1), &pack(w1, mu1)))
+    let pack = |x: &[D], g: &[D]| pack::<S, D, N>(reduction, x, g, zero);
+    e_plus(reduction, &pack(x0, &[]), &pack(plus.0, plus.1), &pack(q1.0, q1.1), &pack(w1, mu1))
 }
 
 /// e_{d−}(x1^−, g1^−, x1, w0, μ0, q0) (lemma:reducedactionlocalminus) with the pairing terms
@@ -235,8 +237,8 @@ where
     check_lengths(&[(minus.0.len(), n_x), (minus.1.len(), n_g), (x1.len(), n_x), (w0.len(), n_x)])?;
     check_lengths(&[(mu0.len(), n_g), (q0.0.len(), n_x), (q0.1.len(), n_g)])?;
     let zero = D::from(0.0);
-    let pack = |x: &[D], g: &[D]| reduction.pack::<D, N>(x, g, zero);
-    Ok(e_minus(reduction, &pack(minus.0, minus.1), &pack(x1, &[]), &pack(w0, mu0), &pack(q0.0, q0.1), signs))
+    let pack = |x: &[D], g: &[D]| pack::<S, D, N>(reduction, x, g, zero);
+    e_minus(reduction, &pack(minus.0, minus.1), &pack(x1, &[]), &pack(w0, mu0), &pack(q0.0, q0.1), signs)
 }
 
 /// S⁺ along a curve (eq:lagrangepontryaginaction).
@@ -264,7 +266,7 @@ pub fn reduced_action_plus<S: System<N>, const N: usize>(
     curve: &PlusCurve<N>,
 ) -> Result<f64, Error> {
     let steps = curve.steps()?;
-    Ok((0..steps).map(|k| e_plus(reduction, &curve.q[k], &curve.q_plus[k], &curve.q[k + 1], &curve.p_next[k])).sum())
+    (0..steps).map(|k| e_plus(reduction, &curve.q[k], &curve.q_plus[k], &curve.q[k + 1], &curve.p_next[k])).sum()
 }
 
 /// Σ_k e_{d−} along a trivialized curve (eq:reducedlagrangepontryaginprincipleminus).
@@ -274,9 +276,7 @@ pub fn reduced_action_minus<S: System<N>, const N: usize>(
     signs: Signs,
 ) -> Result<f64, Error> {
     let steps = curve.steps()?;
-    Ok((0..steps)
-        .map(|k| e_minus(reduction, &curve.q_minus[k], &curve.q[k + 1], &curve.p[k], &curve.q[k], signs))
-        .sum())
+    (0..steps).map(|k| e_minus(reduction, &curve.q_minus[k], &curve.q[k + 1], &curve.p[k], &curve.q[k], signs)).sum()
 }
 
 /// The gradient of S⁺ with respect to the interior q_k, every q_k^+ and every p_{k+1}.
@@ -286,7 +286,7 @@ pub fn action_plus_gradient<S: System<N>, const N: usize>(
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
     let slots = |k| [Slot::Q(k), Slot::Aux(k), Slot::Q(k + 1), Slot::Momenta(k)];
-    Ok(assemble(steps, (&curve.q, &curve.q_plus, &curve.p_next), slots, |[a, b, c, d]| energy_plus(ld, a, b, c, d)))
+    assemble(steps, (&curve.q, &curve.q_plus, &curve.p_next), slots, |[a, b, c, d]| Ok(energy_plus(ld, a, b, c, d)))
 }
 
 /// The gradient of S⁻ with respect to the interior q_k, every q_{k+1}^− and every p_k.
@@ -297,7 +297,7 @@ pub fn action_minus_gradient<S: System<N>, const N: usize>(
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
     let slots = |k| [Slot::Aux(k), Slot::Q(k + 1), Slot::Momenta(k), Slot::Q(k)];
-    Ok(assemble(steps, (&curve.q, &curve.q_minus, &curve.p), slots, |[a, b, c, d]| energy_minus(ld, a, b, c, d, signs)))
+    assemble(steps, (&curve.q, &curve.q_minus, &curve.p), slots, |[a, b, c, d]| Ok(energy_minus(ld, a, b, c, d, signs)))
 }
 
 /// The gradient of Σ e_{d+} along a trivialized curve with respect to the interior q̂_k = (x_k, g_k),
@@ -308,7 +308,7 @@ pub fn reduced_action_plus_gradient<S: System<N>, const N: usize>(
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
     let slots = |k| [Slot::Q(k), Slot::Aux(k), Slot::Q(k + 1), Slot::Momenta(k)];
-    Ok(assemble(steps, (&curve.q, &curve.q_plus, &curve.p_next), slots, |[a, b, c, d]| e_plus(reduction, a, b, c, d)))
+    assemble(steps, (&curve.q, &curve.q_plus, &curve.p_next), slots, |[a, b, c, d]| e_plus(reduction, a, b, c, d))
 }
 
 /// The gradient of Σ e_{d−} along a trivialized curve with respect to the interior q̂_k, every
@@ -320,36 +320,7 @@ pub fn reduced_action_minus_gradient<S: System<N>, const N: usize>(
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
     let slots = |k| [Slot::Aux(k), Slot::Q(k + 1), Slot::Momenta(k), Slot::Q(k)];
-    Ok(assemble(steps, (&curve.q, &curve.q_minus, &curve.p), slots, |[a, b, c, d]| {
-        e_minus(reduction, a, b, c, d, signs)
-    }))
-}
-
-/// The value of `f` and its gradient with respect to each of B blocks of N arguments, by forward-mode
-/// automatic differentiation (one `DualSVec64<N>` pass per block).
-pub(crate) fn block_gradient<const N: usize, const B: usize>(
-    blocks: &[[f64; N]; B],
-    f: impl Fn(&[[DualSVec64<N>; N]; B]) -> DualSVec64<N>,
-) -> (f64, [[f64; N]; B]) {
-    let mut value = 0.0;
-    let mut gradient = [[0.0; N]; B];
-    for (seeded, out) in gradient.iter_mut().enumerate() {
-        let args: [[DualSVec64<N>; N]; B] = std::array::from_fn(|c| {
-            std::array::from_fn(|i| {
-                let v = DualSVec64::from_re(blocks[c][i]);
-                if c == seeded {
-                    v.derivative(i)
-                } else {
-                    v
-                }
-            })
-        });
-        let result = f(&args);
-        value = result.re;
-        let eps = result.eps.unwrap_generic(Const::<N>, U1);
-        *out = std::array::from_fn(|i| eps[i]);
-    }
-    (value, gradient)
+    assemble(steps, (&curve.q, &curve.q_minus, &curve.p), slots, |[a, b, c, d]| e_minus(reduction, a, b, c, d, signs))
 }
 
 /// The three families of variables of a curve: q_k, the auxiliary points and the momenta.
@@ -367,8 +338,8 @@ fn assemble<const N: usize>(
     steps: usize,
     (q, aux, momenta): Families<'_, N>,
     slots: impl Fn(usize) -> [Slot; 4],
-    term: impl Fn(&[[DualSVec64<N>; N]; 4]) -> DualSVec64<N>,
-) -> ActionGradient<N> {
+    term: impl Fn(&[[Dual<N>; N]; 4]) -> Result<Dual<N>, Error>,
+) -> Result<ActionGradient<N>, Error> {
     let mut grad_q = vec![[0.0; N]; steps + 1];
     let mut grad_aux = vec![[0.0; N]; steps];
     let mut grad_momenta = vec![[0.0; N]; steps];
@@ -380,7 +351,7 @@ fn assemble<const N: usize>(
             Slot::Aux(i) => aux[i],
             Slot::Momenta(i) => momenta[i],
         });
-        let (_, gradient) = block_gradient(&blocks, &term);
+        let (_, gradient) = block_gradient(&blocks, &term)?;
         for (slot, g) in slots.iter().zip(&gradient) {
             let target = match *slot {
                 Slot::Q(i) => &mut grad_q[i],
@@ -394,7 +365,7 @@ fn assemble<const N: usize>(
         }
     }
     let interior = if steps >= 1 { grad_q[1..steps].to_vec() } else { Vec::new() };
-    ActionGradient { q: interior, aux: grad_aux, momenta: grad_momenta, scale }
+    Ok(ActionGradient { q: interior, aux: grad_aux, momenta: grad_momenta, scale })
 }
 
 /// e_{d+} on packed blocks: q0 = (x0, g0), plus = (x0^+, g0^+), q1 = (x1, g1) (absolute; made relative
@@ -405,23 +376,22 @@ fn e_plus<S, D, const N: usize>(
     plus: &[D; N],
     q1: &[D; N],
     wm1: &[D; N],
-) -> D
+) -> Result<D, Error>
 where
     S: System<N>,
     D: Scalar,
 {
     let x0 = shape_only(reduction, q0);
-    let l = reduction.l_plus(&x0_gamma(reduction, &x0, plus), plus);
-    let mut total = l;
+    let mut total = l_plus(reduction, &x0_gamma(reduction, &x0, plus), plus)?;
     for (i, &si) in reduction.split.shape.iter().enumerate() {
         let kt_mu = kt_times(reduction, i, wm1);
         total += (wm1[si] - kt_mu) * (q1[si] - plus[si]);
     }
     for (j, &gj) in reduction.split.group.iter().enumerate() {
-        let h = reduction.k_row(j, plus, &x0).unwrap_or(D::from(0.0));
+        let h = k_times(reduction, j, plus, &x0);
         total += wm1[gj] * (q1[gj] - q0[gj] - plus[gj] - h);
     }
-    total
+    Ok(total)
 }
 
 /// e_{d−} on packed blocks: minus = (x1^−, g1^−), q1 = (x1, g1), wm0 = (w0, μ0) and q0 = (x0, g0)
@@ -433,23 +403,33 @@ fn e_minus<S, D, const N: usize>(
     wm0: &[D; N],
     q0: &[D; N],
     signs: Signs,
-) -> D
+) -> Result<D, Error>
 where
     S: System<N>,
     D: Scalar,
 {
     let x1 = shape_only(reduction, q1);
-    let l = reduction.l_minus(minus, &x1);
+    let l = l_minus(reduction, minus, &x1)?;
     let mut pairings = D::from(0.0);
     for (i, &si) in reduction.split.shape.iter().enumerate() {
         let kt_mu = kt_times(reduction, i, wm0);
         pairings += (wm0[si] - kt_mu) * (q0[si] - minus[si]);
     }
     for (j, &gj) in reduction.split.group.iter().enumerate() {
-        let h = reduction.k_row(j, minus, &x1).unwrap_or(D::from(0.0));
+        let h = k_times(reduction, j, minus, &x1);
         pairings += wm0[gj] * (q0[gj] - q1[gj] - minus[gj] - h);
     }
-    l + pairings * signs.factor()
+    Ok(l + pairings * signs.factor())
+}
+
+/// (K (u − v))_j with u, v at the shape positions of packed blocks: h_d((v, 0), u)_j.
+fn k_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, j: usize, u: &[D; N], v: &[D; N]) -> D {
+    reduction
+        .split
+        .shape
+        .iter()
+        .enumerate()
+        .fold(D::from(0.0), |acc, (i, &si)| acc + (u[si] - v[si]) * reduction.connection.entry(j, i))
 }
 
 /// (Kᵀ μ)_i with μ at the group positions of a packed block.

@@ -3,9 +3,9 @@
 //! for a linear connection, and the trivialized initial data of paper §7.1.
 
 use ddirac::mechanics::legendre;
-use ddirac::reduction::trivialization::*;
 use ddirac::systems::{ChargedParticle, TwoBody};
 use ddirac::{Connection, Error, Split, System};
+use ddirac_oracle::trivialization::*;
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
