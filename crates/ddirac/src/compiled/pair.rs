@@ -3,14 +3,17 @@
 //!
 //! A step evaluates f = L_d(base + a, base + b) (or the reduced l̂) at a = 0 and the trial unknowns
 //! b: the value, ∂f/∂a (the residual), ∂f/∂b (the next momenta) and, for a fresh Jacobian, the
-//! mixed block ∂²f/∂a∂b. [`CompiledPair`] holds two native programs, one without and one with the
-//! mixed block, built once per run from a trace of f.
+//! mixed block ∂²f/∂a∂b. [`CompiledPair`] holds two programs, one without and one with the
+//! mixed block, built once per run from a trace of f (native code with the `jit` feature).
 
 use std::cell::RefCell;
 
 use nalgebra::{SMatrix, SVector};
 
-use super::{pair_programs, JitError, NativeProgram, NotCompiled, PairPrograms, Program, Traced};
+use super::executable::Executable;
+#[cfg(feature = "jit")]
+use super::JitError;
+use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
 
 /// Why derivatives could not be compiled.
@@ -23,6 +26,9 @@ pub enum CompileError {
     /// The graph could not be turned into native code.
     #[error("native code: {0}")]
     Native(String),
+    /// A program reads a register, input or output it does not have.
+    #[error(transparent)]
+    Malformed(#[from] MalformedProgram),
     /// The compiled derivatives disagree with dual numbers at the first point.
     #[error("compiled derivatives disagree with dual numbers at the first step ({what}: {compiled} vs {dual})")]
     Disagrees {
@@ -35,16 +41,18 @@ pub enum CompileError {
     },
 }
 
+#[cfg(feature = "jit")]
 impl From<JitError> for CompileError {
     fn from(e: JitError) -> Self {
         CompileError::Native(e.to_string())
     }
 }
 
-/// Native code for the derivatives of f(base, a, b) at a = 0, for N coordinates.
+/// Compiled derivatives of f(base, a, b) at a = 0, for N coordinates: native code with the `jit`
+/// feature, interpreted programs without it.
 pub struct CompiledPair<const N: usize> {
-    first: NativeProgram,
-    mixed: NativeProgram,
+    first: Executable,
+    mixed: Executable,
     /// Instruction counts of the two programs (without, with the mixed block).
     pub instructions: (usize, usize),
     buffers: RefCell<Buffers>,
@@ -84,8 +92,8 @@ impl<const N: usize> CompiledPair<N> {
         }
         let instructions = (first.instructions.len(), mixed.instructions.len());
         Ok(Self {
-            first: NativeProgram::compile(first)?,
-            mixed: NativeProgram::compile(mixed)?,
+            first: Executable::new(first)?,
+            mixed: Executable::new(mixed)?,
             instructions,
             buffers: RefCell::new(Buffers { inputs: vec![0.0; 2 * N], outputs: vec![0.0; 1 + 2 * N + N * N] }),
         })
