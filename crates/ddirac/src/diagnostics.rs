@@ -96,8 +96,9 @@ pub struct NewtonSummary {
 /// How a run evaluated the derivatives of its step equations.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum DerivativePath {
-    /// Native code compiled from the Lagrangian ([`crate::compiled`]), with the instruction counts of
-    /// its two programs (residual, and residual with the Jacobian).
+    /// Programs compiled from the Lagrangian ([`crate::compiled`]; native code with the `jit` feature,
+    /// interpreted without it), with the instruction counts of its two programs (residual, and
+    /// residual with the Jacobian).
     Compiled {
         /// Instructions of the program without the mixed block.
         residual: usize,

@@ -93,7 +93,9 @@ impl Variant {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Differentiation {
     /// Compiled derivatives when the run has at least 5000 steps, the Lagrangian can be traced and
-    /// the host runs native code; dual numbers otherwise (the summary says which, and why).
+    /// compiling is estimated to pay ([`crate::compiled::CompileCost`]; without the `jit` feature, when
+    /// the interpreted programs are estimated faster or the step has a closed form); dual numbers
+    /// otherwise (the summary says which, and why).
     #[default]
     Auto,
     /// Compiled derivatives ([`crate::compiled`]); a run that cannot compile them fails.

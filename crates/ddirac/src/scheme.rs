@@ -106,7 +106,8 @@ pub(crate) trait Scheme<const N: usize> {
 /// Longer runs are traced, and compiled if the estimate of [`CompileCost`] says that compiling pays.
 pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 
-/// How a run evaluates its scheme's generating function: compiled native code or dual numbers.
+/// How a run evaluates its scheme's generating function: compiled programs (native code with the
+/// `jit` feature, else interpreted) or dual numbers.
 pub(crate) enum StepDerivatives<const N: usize> {
     /// Compiled derivatives, and the compiled closed-form step when the step equations are linear.
     Compiled {
@@ -122,7 +123,8 @@ impl<const N: usize> StepDerivatives<N> {
     /// linear, at its solution for the first step's momenta). Under [`Differentiation::Auto`] a
     /// failure means dual numbers (the reason goes into the path), and so does a run of fewer than
     /// [`AUTO_MIN_STEPS`] steps or one whose programs would cost more to compile than its steps
-    /// save ([`CompileCost`]); under [`Differentiation::Compiled`] a failure is an error.
+    /// save ([`CompileCost`]; without the `jit` feature, whose interpreted steps would be slower,
+    /// unless the step has a closed form); under [`Differentiation::Compiled`] a failure is an error.
     pub fn new(
         scheme: &impl Scheme<N>,
         choice: Differentiation,
@@ -146,11 +148,17 @@ impl<const N: usize> StepDerivatives<N> {
             (Err(e), Differentiation::Auto) => return dual_numbers(Some(e.to_string())),
             (Err(e), _) => return Err(e.into()),
         };
-        if choice == Differentiation::Auto {
-            if let Some(reason) = CompileCost::estimate::<N>(&programs).refusal(steps) {
-                return dual_numbers(Some(reason));
-            }
-        }
+        let refusal = match choice {
+            Differentiation::Auto => CompileCost::estimate::<N>(&programs).refusal(steps),
+            _ => None,
+        };
+        // Native code is refused before it is generated. Interpreted programs (without the `jit`
+        // feature) cost nothing to prepare, and a refused run still uses them when its step has a
+        // closed form: one evaluation per step instead of Newton's method.
+        let refusal = match refusal {
+            Some(reason) if cfg!(feature = "jit") => return dual_numbers(Some(reason)),
+            refusal => refusal,
+        };
         let compiled = CompiledPair::from_programs(&programs).and_then(|pair| {
             let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
@@ -164,6 +172,7 @@ impl<const N: usize> StepDerivatives<N> {
             Ok((pair, linear))
         });
         match (compiled, choice) {
+            (Ok((_, None)), _) if refusal.is_some() => dual_numbers(refusal),
             (Ok((pair, linear)), _) => {
                 let (residual, jacobian) = pair.instructions;
                 let closed_form = linear.as_ref().map(|l| l.instructions);

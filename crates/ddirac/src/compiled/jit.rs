@@ -25,10 +25,10 @@ use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, Module};
 
-use super::program::{Binary, Instruction, Program, Register, Unary};
+use super::program::{Binary, Instruction, MalformedProgram, Program, Register, Unary};
 
-/// Why a program could not be compiled to native code. The program can still be evaluated by
-/// [`Program::eval`].
+/// Why a program could not be compiled to native code. Unless it is malformed, the program can still be
+/// evaluated by [`Program::eval`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum JitError {
@@ -47,34 +47,9 @@ pub enum JitError {
         /// Cranelift's message.
         message: String,
     },
-    /// An instruction reads a register that no earlier instruction writes.
-    #[error("malformed program: instruction {instruction} reads register {register}, which is not written before it")]
-    UndefinedRegister {
-        /// The reading instruction.
-        instruction: usize,
-        /// The register it reads.
-        register: Register,
-    },
-    /// An instruction reads an input the program does not have.
-    #[error("malformed program: instruction {instruction} reads input {input}, but the program has {inputs} inputs")]
-    UndefinedInput {
-        /// The reading instruction.
-        instruction: usize,
-        /// The input it reads.
-        input: u32,
-        /// How many inputs the program has.
-        inputs: usize,
-    },
-    /// An output names a register the program does not have.
-    #[error("malformed program: output {output} reads register {register}, but the program has {registers} registers")]
-    UndefinedOutput {
-        /// The output.
-        output: usize,
-        /// The register it names.
-        register: Register,
-        /// How many registers (instructions) the program has.
-        registers: usize,
-    },
+    /// The program reads a register, input or output it does not have.
+    #[error(transparent)]
+    Malformed(#[from] MalformedProgram),
 }
 
 impl JitError {
@@ -128,7 +103,7 @@ impl NativeProgram {
     /// Fails when the host has no code generator, when the program reads a register or input it
     /// does not define, or (a defect) when Cranelift fails.
     pub fn compile(program: &Program) -> Result<Self, JitError> {
-        validate(program)?;
+        program.validate()?;
         let mut module = host_module()?;
         let pointer = module.target_config().pointer_type();
         let mut context = module.make_context();
@@ -194,26 +169,6 @@ impl Drop for NativeProgram {
 impl fmt::Debug for NativeProgram {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("NativeProgram").field("inputs", &self.inputs).field("outputs", &self.outputs).finish()
-    }
-}
-
-/// Checks that every operand, input and output exists, so that code generation cannot fail on the
-/// program's account.
-fn validate(program: &Program) -> Result<(), JitError> {
-    for (instruction, &op) in program.instructions.iter().enumerate() {
-        if let Instruction::Input(input) = op {
-            if input as usize >= program.inputs {
-                return Err(JitError::UndefinedInput { instruction, input, inputs: program.inputs });
-            }
-        }
-        if let Some(register) = op.operands().find(|&r| r as usize >= instruction) {
-            return Err(JitError::UndefinedRegister { instruction, register });
-        }
-    }
-    let registers = program.instructions.len();
-    match program.outputs.iter().position(|&r| r as usize >= registers) {
-        Some(output) => Err(JitError::UndefinedOutput { output, register: program.outputs[output], registers }),
-        None => Ok(()),
     }
 }
 
@@ -573,17 +528,17 @@ mod tests {
         };
         assert_eq!(
             NativeProgram::compile(&forward).unwrap_err(),
-            JitError::UndefinedRegister { instruction: 1, register: 1 }
+            JitError::Malformed(MalformedProgram::UndefinedRegister { instruction: 1, register: 1 })
         );
         let input = Program { inputs: 1, instructions: vec![Instruction::Input(1)], outputs: vec![] };
         assert_eq!(
             NativeProgram::compile(&input).unwrap_err(),
-            JitError::UndefinedInput { instruction: 0, input: 1, inputs: 1 }
+            JitError::Malformed(MalformedProgram::UndefinedInput { instruction: 0, input: 1, inputs: 1 })
         );
         let output = Program { inputs: 1, instructions: vec![Instruction::Input(0)], outputs: vec![0, 1] };
         assert_eq!(
             NativeProgram::compile(&output).unwrap_err(),
-            JitError::UndefinedOutput { output: 1, register: 1, registers: 1 }
+            JitError::Malformed(MalformedProgram::UndefinedOutput { output: 1, register: 1, registers: 1 })
         );
     }
 

@@ -24,14 +24,15 @@
 //! Both conditions are decided exactly, on the traced graph: a derivative that reads no unknown is
 //! constant in them. The eliminations are done on the graph too (Gaussian elimination with the pivot
 //! order that partial pivoting picks at the first step, kept from then on), where the structure of
-//! H and J folds away: what remains is the arithmetic a hand-written step would do. One native
-//! program maps (base, m) to z, the value of f, the next momenta (∂f/∂b where they advance) and the residual r(z) of
+//! H and J folds away: what remains is the arithmetic a hand-written step would do. One program
+//! (native code with the `jit` feature) maps (base, m) to z, the value of f, the next momenta (∂f/∂b where they advance) and the residual r(z) of
 //! the full equations, which the stepper checks against the Newton tolerance: a step whose fixed
 //! pivot order has become poor fails that test and is finished by Newton's method.
 
 use super::derivative::{directional, pair_graph, PairGraph};
+use super::executable::Executable;
 use super::graph::{Graph, Node};
-use super::{CompileError, Instruction, NativeProgram, Program, Traced};
+use super::{CompileError, Instruction, Program, Traced};
 
 /// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
 /// constant (see [`constant_in`]); the residual test of every step guards the rest.
@@ -42,7 +43,7 @@ const PIVOT_TOLERANCE: f64 = 1e-14;
 
 /// The compiled closed-form step of linear step equations, for N coordinates.
 pub struct LinearStep<const N: usize> {
-    program: std::sync::Arc<NativeProgram>,
+    program: std::sync::Arc<Executable>,
     /// Instructions of the step program.
     pub instructions: usize,
 }
@@ -97,7 +98,7 @@ impl<const N: usize> LinearStep<N> {
             return Ok(None);
         };
         let instructions = program.instructions.len();
-        Ok(Some(Self { program: super::native(&program)?, instructions }))
+        Ok(Some(Self { program: super::cache::shared(&program)?, instructions }))
     }
 
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are

@@ -1,23 +1,28 @@
 //! Compiled derivatives: a Lagrangian traced once into a graph of operations, differentiated
-//! symbolically, simplified, and turned into straight-line native code.
+//! symbolically, simplified, and turned into straight-line programs, which run as native code
+//! (Cranelift, the default feature `jit`) or, without that feature, on their interpreter
+//! ([`Program::eval`]).
 
 mod cache;
 mod cost;
 mod derivative;
+mod executable;
 mod graph;
+#[cfg(feature = "jit")]
 pub mod jit;
 mod linear_step;
 mod pair;
 pub mod program;
 pub mod trace;
 
-pub use cache::{native, native_compilations};
+pub use cache::native_compilations;
 pub use cost::CompileCost;
 pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairPrograms};
+#[cfg(feature = "jit")]
 pub use jit::{JitError, NativeProgram};
 pub use linear_step::{LinearSolution, LinearStep};
 pub use pair::{CompileError, CompiledPair};
-pub use program::{Binary, Instruction, Program, Register, Unary};
+pub use program::{Binary, Instruction, MalformedProgram, Program, Register, Unary};
 pub use trace::{NotCompiled, Traced};
 
 #[cfg(test)]

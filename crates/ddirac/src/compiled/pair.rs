@@ -3,15 +3,18 @@
 //!
 //! A step evaluates f = L_d(base + a, base + b) (or the reduced l̂) at a = 0 and the trial unknowns
 //! b: the value, ∂f/∂a (the residual), ∂f/∂b (the next momenta) and, for a fresh Jacobian, the
-//! mixed block ∂²f/∂a∂b. [`CompiledPair`] holds two native programs, one without and one with the
-//! mixed block, built once per run from a trace of f.
+//! mixed block ∂²f/∂a∂b. [`CompiledPair`] holds two programs, one without and one with the
+//! mixed block, built once per run from a trace of f (native code with the `jit` feature).
 
 use std::cell::RefCell;
 use std::sync::Arc;
 
 use nalgebra::{SMatrix, SVector};
 
-use super::{pair_programs, JitError, NativeProgram, NotCompiled, PairPrograms, Program, Traced};
+use super::executable::Executable;
+#[cfg(feature = "jit")]
+use super::JitError;
+use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
 
 /// Why derivatives could not be compiled.
@@ -24,6 +27,9 @@ pub enum CompileError {
     /// The graph could not be turned into native code.
     #[error("native code: {0}")]
     Native(String),
+    /// A program reads a register, input or output it does not have.
+    #[error(transparent)]
+    Malformed(#[from] MalformedProgram),
     /// The compiled derivatives disagree with dual numbers at the first point.
     #[error("compiled derivatives disagree with dual numbers at the first step ({what}: {compiled} vs {dual})")]
     Disagrees {
@@ -36,19 +42,21 @@ pub enum CompileError {
     },
 }
 
+#[cfg(feature = "jit")]
 impl From<JitError> for CompileError {
     fn from(e: JitError) -> Self {
         CompileError::Native(e.to_string())
     }
 }
 
-/// Native code for the derivatives of f(base, a, b) at a = 0, for N coordinates.
+/// Compiled derivatives of f(base, a, b) at a = 0, for N coordinates: native code with the `jit`
+/// feature, interpreted programs without it.
 ///
 /// If the trace of f was guarded (f compares numbers, see [`super::trace`]), the programs hold only
 /// where the guards do: [`CompiledPair::first_or_mixed`] answers `None` elsewhere.
 pub struct CompiledPair<const N: usize> {
-    first: Arc<NativeProgram>,
-    mixed: Arc<NativeProgram>,
+    first: Arc<Executable>,
+    mixed: Arc<Executable>,
     /// The allowed signs of each guard ([`PairPrograms::guards`]).
     guards: Vec<u8>,
     /// Instruction counts of the two programs (without, with the mixed block).
@@ -93,8 +101,8 @@ impl<const N: usize> CompiledPair<N> {
         }
         let instructions = (first.instructions.len(), mixed.instructions.len());
         Ok(Self {
-            first: super::native(first)?,
-            mixed: super::native(mixed)?,
+            first: super::cache::shared(first)?,
+            mixed: super::cache::shared(mixed)?,
             guards: guards.clone(),
             instructions,
             buffers: RefCell::new(Buffers {

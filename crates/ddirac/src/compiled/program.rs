@@ -1,8 +1,8 @@
 //! Straight-line programs over `f64` registers: the compiled form of a Lagrangian's derivatives.
 //!
 //! Instruction k writes register k; operands name earlier registers. A [`Program`] has no branches,
-//! so evaluating it costs exactly its instructions. [`Program::eval`] interprets it (the reference
-//! for the native code of [`super::jit`], and the path on targets without it).
+//! so evaluating it costs exactly its instructions. [`Program::eval`] interprets it: the reference
+//! for the native code of `jit` (feature `jit`), and the path of compiled derivatives without it.
 
 /// A unary operation. [`Unary::apply`] is its one definition, shared by the interpreter and by the
 /// native code, which calls it for every function that is not a single machine instruction.
@@ -170,6 +170,40 @@ impl Instruction {
     }
 }
 
+/// Why a [`Program`] cannot run: it reads a register, input or output that does not exist.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MalformedProgram {
+    /// An instruction reads a register that no earlier instruction writes.
+    #[error("malformed program: instruction {instruction} reads register {register}, which is not written before it")]
+    UndefinedRegister {
+        /// The reading instruction.
+        instruction: usize,
+        /// The register it reads.
+        register: Register,
+    },
+    /// An instruction reads an input the program does not have.
+    #[error("malformed program: instruction {instruction} reads input {input}, but the program has {inputs} inputs")]
+    UndefinedInput {
+        /// The reading instruction.
+        instruction: usize,
+        /// The input it reads.
+        input: u32,
+        /// How many inputs the program has.
+        inputs: usize,
+    },
+    /// An output names a register the program does not have.
+    #[error("malformed program: output {output} reads register {register}, but the program has {registers} registers")]
+    UndefinedOutput {
+        /// The output.
+        output: usize,
+        /// The register it names.
+        register: Register,
+        /// How many registers (instructions) the program has.
+        registers: usize,
+    },
+}
+
 /// A straight-line program: `inputs` numbers in, one register per instruction, `outputs` read from
 /// registers.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -196,6 +230,38 @@ impl Program {
         }
         for (out, &r) in outputs.iter_mut().zip(&self.outputs) {
             *out = registers[r as usize];
+        }
+    }
+
+    /// Checks that every operand, input and output exists, so that neither [`Program::eval`] nor
+    /// native code generation can fail on the program's account.
+    ///
+    /// ```
+    /// use ddirac::compiled::{Binary, Instruction, MalformedProgram, Program};
+    /// let forward = Program {
+    ///     inputs: 1,
+    ///     instructions: vec![Instruction::Input(0), Instruction::Binary(Binary::Add, 0, 1)],
+    ///     outputs: vec![1],
+    /// };
+    /// assert_eq!(forward.validate(), Err(MalformedProgram::UndefinedRegister { instruction: 1, register: 1 }));
+    /// ```
+    pub fn validate(&self) -> Result<(), MalformedProgram> {
+        for (instruction, &op) in self.instructions.iter().enumerate() {
+            if let Instruction::Input(input) = op {
+                if input as usize >= self.inputs {
+                    return Err(MalformedProgram::UndefinedInput { instruction, input, inputs: self.inputs });
+                }
+            }
+            if let Some(register) = op.operands().find(|&r| r as usize >= instruction) {
+                return Err(MalformedProgram::UndefinedRegister { instruction, register });
+            }
+        }
+        let registers = self.instructions.len();
+        match self.outputs.iter().position(|&r| r as usize >= registers) {
+            Some(output) => {
+                Err(MalformedProgram::UndefinedOutput { output, register: self.outputs[output], registers })
+            }
+            None => Ok(()),
         }
     }
 
