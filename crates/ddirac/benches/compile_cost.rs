@@ -18,14 +18,14 @@ use ddirac::expression::{ExpressionSpec, ExpressionSystem};
 use ddirac::newton::{KeptJacobian, ACROSS_SOLVES};
 use ddirac::systems::PendulumChain;
 use ddirac::{Coordinate, DiscreteLagrangian, Rule, System};
-use num_dual::DualNum;
+use ddirac::Scalar;
 
 const STEP: f64 = 0.01;
 
 struct Ld<'a, S, const N: usize>(DiscreteLagrangian<'a, S>, [f64; N]);
 
 impl<S: System<N>, const N: usize> PairFunction<N> for Ld<'_, S, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(&self.1, a, b)
     }
 }

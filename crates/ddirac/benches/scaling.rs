@@ -17,12 +17,12 @@ use criterion::{criterion_group, criterion_main, measurement::WallTime, Benchmar
 use ddirac::ad::{mixed_chunked, mixed_single_pass, PairFunction};
 use ddirac::systems::PendulumChain;
 use ddirac::{integrate, DiscreteLagrangian, Method, OutputOptions, Rule};
-use num_dual::DualNum;
+use ddirac::Scalar;
 
 struct Ld<'a, const N: usize>(DiscreteLagrangian<'a, PendulumChain<N>>, [f64; N]);
 
 impl<const N: usize> PairFunction<N> for Ld<'_, N> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; N], b: &[D; N]) -> D {
+    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(&self.1, a, b)
     }
 }
