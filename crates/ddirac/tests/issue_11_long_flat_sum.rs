@@ -5,9 +5,8 @@
 
 use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, Traced};
-use ddirac::expression::{parse, ExprKind, ExpressionSpec, ExpressionSystem, Program, Scope, SyntaxError};
+use ddirac::expression::{parse, CompiledExpression, ExprKind, ExpressionSpec, ExpressionSystem, Scope, SyntaxError};
 use ddirac::{solve, Coordinate, Differentiation, InitialMomentum, Method, OutputOptions, Problem};
-use num_dual::DualNum;
 
 const TERMS: usize = 100_000;
 
@@ -17,10 +16,10 @@ fn flat_sum(terms: usize) -> String {
 }
 
 /// L(x, ẋ) as a function of the two blocks (x) and (ẋ).
-struct Lagrangian<'p>(&'p Program);
+struct Lagrangian<'p>(&'p CompiledExpression);
 
 impl PairFunction<1> for Lagrangian<'_> {
-    fn eval<D: DualNum<Primitive = f64> + Copy>(&self, a: &[D; 1], b: &[D; 1]) -> D {
+    fn eval<D: ddirac::Scalar>(&self, a: &[D; 1], b: &[D; 1]) -> D {
         self.0.eval(&[a[0], b[0]])
     }
 }

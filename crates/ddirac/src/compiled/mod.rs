@@ -4,7 +4,8 @@
 mod cache;
 mod cost;
 mod derivative;
-mod graph;
+pub(crate) mod graph;
+mod interpreter;
 pub mod jit;
 mod linear_step;
 mod pair;
@@ -14,6 +15,7 @@ pub mod trace;
 pub use cache::{native, native_compilations};
 pub use cost::CompileCost;
 pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairPrograms};
+pub use interpreter::Interpreter;
 pub use jit::{JitError, NativeProgram};
 pub use linear_step::{LinearSolution, LinearStep};
 pub use pair::{CompileError, CompiledPair};
