@@ -46,7 +46,7 @@ pub trait Scalar: DualNum<Primitive = f64> + Copy {
     /// ```
     /// use ddirac::Scalar;
     /// assert_eq!(2.0f64.min_of(1.0), 1.0);
-    /// assert_eq!(0.0f64.min_of(-0.0), 0.0); // equal: the first
+    /// assert!(0.0f64.min_of(-0.0).is_sign_positive()); // equal: the first
     /// assert_eq!(2.0f64.min_of(f64::NAN), 2.0);
     /// ```
     #[inline(always)]
