@@ -68,17 +68,53 @@ impl WithConstant {
 /// One step; operands and destinations are register indices.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Step {
-    Load { dst: u32, input: u32 },
-    Const { dst: u32, value: f64 },
-    Unary { op: Unary, dst: u32, a: u32 },
-    Binary { op: Binary, dst: u32, a: u32, b: u32 },
-    Scalar { op: WithConstant, dst: u32, a: u32, c: f64 },
+    Load {
+        dst: u32,
+        input: u32,
+    },
+    Const {
+        dst: u32,
+        value: f64,
+    },
+    Unary {
+        op: Unary,
+        dst: u32,
+        a: u32,
+    },
+    Binary {
+        op: Binary,
+        dst: u32,
+        a: u32,
+        b: u32,
+    },
+    Scalar {
+        op: WithConstant,
+        dst: u32,
+        a: u32,
+        c: f64,
+    },
     /// r[dst] ∘= r[b], in place (`Add`, `Sub`).
-    Update { op: Binary, dst: u32, b: u32 },
+    Update {
+        op: Binary,
+        dst: u32,
+        b: u32,
+    },
     /// r[dst] = r[dst] ∘ c, in place (`Add`, `Sub`, `SubFrom`, `Mul`).
-    ScalarUpdate { op: WithConstant, dst: u32, c: f64 },
-    Powi { dst: u32, a: u32, n: i32 },
-    SinCos { sin: u32, cos: u32, a: u32 },
+    ScalarUpdate {
+        op: WithConstant,
+        dst: u32,
+        c: f64,
+    },
+    Powi {
+        dst: u32,
+        a: u32,
+        n: i32,
+    },
+    SinCos {
+        sin: u32,
+        cos: u32,
+        a: u32,
+    },
 }
 
 /// Where the value ends up.
@@ -258,7 +294,9 @@ impl Interpreter {
                 }
                 Form::Unary(Unary::Neg, _) if in_place => Step::ScalarUpdate { op: WithConstant::Mul, dst, c: -1.0 },
                 Form::Unary(op, _) => Step::Unary { op, dst, a: read[0] },
-                Form::Binary(op @ (Binary::Add | Binary::Sub), _, _) if in_place => Step::Update { op, dst, b: read[1] },
+                Form::Binary(op @ (Binary::Add | Binary::Sub), _, _) if in_place => {
+                    Step::Update { op, dst, b: read[1] }
+                }
                 Form::Binary(op, _, _) => Step::Binary { op, dst, a: read[0], b: read[1] },
                 Form::Scalar(
                     op @ (WithConstant::Add | WithConstant::Sub | WithConstant::SubFrom | WithConstant::Mul),

@@ -84,7 +84,10 @@ mod tests {
                 native.call(&[x, y, 0.0, 0.0], &mut out);
                 for (k, (&c, &d)) in out[..3].iter().zip(&expected).enumerate() {
                     let what = ["value", "∂/∂x", "∂/∂y"][k];
-                    assert!((c - d).abs() <= 1e-14 * d.abs().max(1.0), "{source} at ({x}, {y}), {what}: native {c}, dual {d}");
+                    assert!(
+                        (c - d).abs() <= 1e-14 * d.abs().max(1.0),
+                        "{source} at ({x}, {y}), {what}: native {c}, dual {d}"
+                    );
                 }
                 checked += 1;
             }

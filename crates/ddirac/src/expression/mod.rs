@@ -68,8 +68,8 @@ mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use compile::Scope;
-pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use compiled_expression::CompiledExpression;
+pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use functions::FUNCTIONS;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};
