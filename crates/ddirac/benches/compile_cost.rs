@@ -17,8 +17,8 @@ use ddirac::compiled::{pair_programs, CompileCost, NativeProgram, Program, Trace
 use ddirac::expression::{ExpressionSpec, ExpressionSystem};
 use ddirac::newton::{KeptJacobian, ACROSS_SOLVES};
 use ddirac::systems::PendulumChain;
-use ddirac::{Coordinate, DiscreteLagrangian, Rule, System};
 use ddirac::Scalar;
+use ddirac::{Coordinate, DiscreteLagrangian, Rule, System};
 
 const STEP: f64 = 0.01;
 

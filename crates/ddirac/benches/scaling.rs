@@ -16,8 +16,8 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, measurement::WallTime, BenchmarkGroup, Criterion, Throughput};
 use ddirac::ad::{mixed_chunked, mixed_single_pass, PairFunction};
 use ddirac::systems::PendulumChain;
-use ddirac::{integrate, DiscreteLagrangian, Method, OutputOptions, Rule};
 use ddirac::Scalar;
+use ddirac::{integrate, DiscreteLagrangian, Method, OutputOptions, Rule};
 
 struct Ld<'a, const N: usize>(DiscreteLagrangian<'a, PendulumChain<N>>, [f64; N]);
 

@@ -6,6 +6,8 @@
 //! number a *runtime input* of the compiled program instead of folding it in: the step size h of a
 //! discrete Lagrangian and the parameters of a text Lagrangian. On every scalar but a traced one,
 //! [`Scalar::runtime_input`] is `None` and the code computes with the plain `f64`, exactly as before.
+//! `Scalar` also names the choices a trace records as operations rather than as guarded comparisons
+//! ([`Scalar::min_of`], [`Scalar::max_of`]).
 //!
 //! A system implements [`crate::System::lagrangian`] for `D: DualNum<Primitive = f64> + Copy` (a
 //! weaker bound than the trait's `D: Scalar`, which Rust accepts), so user code never names
@@ -35,6 +37,41 @@ pub trait Scalar: DualNum<Primitive = f64> + Copy {
     #[inline(always)]
     fn runtime_input(_input: RuntimeInput, _value: f64) -> Option<Self> {
         None
+    }
+
+    /// min(self, other): `other` if it is smaller, else `self` (also when they are equal or `other`
+    /// is NaN), with the derivatives of the one picked. A traced number records one operation
+    /// ([`crate::compiled::Binary::Min`]) instead of a comparison, so the program holds on both sides.
+    ///
+    /// ```
+    /// use ddirac::Scalar;
+    /// assert_eq!(2.0f64.min_of(1.0), 1.0);
+    /// assert!(0.0f64.min_of(-0.0).is_sign_positive()); // equal: the first
+    /// assert_eq!(2.0f64.min_of(f64::NAN), 2.0);
+    /// ```
+    #[inline(always)]
+    fn min_of(self, other: Self) -> Self {
+        if other < self {
+            other
+        } else {
+            self
+        }
+    }
+
+    /// max(self, other): `other` if it is larger, else `self`; see [`Scalar::min_of`].
+    ///
+    /// ```
+    /// use ddirac::Scalar;
+    /// assert_eq!(1.0f64.max_of(2.0), 2.0);
+    /// assert_eq!(2.0f64.max_of(f64::NAN), 2.0);
+    /// ```
+    #[inline(always)]
+    fn max_of(self, other: Self) -> Self {
+        if other > self {
+            other
+        } else {
+            self
+        }
     }
 }
 

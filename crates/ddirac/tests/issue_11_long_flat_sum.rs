@@ -5,7 +5,7 @@
 
 use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, Traced};
-use ddirac::expression::{parse, ExprKind, ExpressionSpec, ExpressionSystem, Program, Scope, SyntaxError};
+use ddirac::expression::{parse, CompiledExpression, ExprKind, ExpressionSpec, ExpressionSystem, Scope, SyntaxError};
 use ddirac::{solve, Coordinate, Differentiation, InitialMomentum, Method, OutputOptions, Problem};
 
 const TERMS: usize = 100_000;
@@ -16,7 +16,7 @@ fn flat_sum(terms: usize) -> String {
 }
 
 /// L(x, ẋ) as a function of the two blocks (x) and (ẋ).
-struct Lagrangian<'p>(&'p Program);
+struct Lagrangian<'p>(&'p CompiledExpression);
 
 impl PairFunction<1> for Lagrangian<'_> {
     fn eval<D: ddirac::Scalar>(&self, a: &[D; 1], b: &[D; 1]) -> D {

@@ -1,12 +1,16 @@
 //! `min`, `max` and `abs` of the expression language under `derivatives = "compiled"`.
 //!
 //! A trace used to fail on `min`/`max` ("inspects the value of an input-dependent number"), so a run
-//! that asked for compiled derivatives was refused. Comparisons are now guarded: the compiled
-//! programs are the branch taken at the trace point, and a point on another branch is evaluated by
-//! dual numbers. The runs below agree with dual numbers and with the exact motion.
+//! that asked for compiled derivatives was refused. `min` and `max` of the language are now
+//! operations of the compiled program (one-sided derivatives of the operand picked), so the programs
+//! hold on both sides of the kink without guards. The runs below agree with dual numbers and with the
+//! exact motion.
 
+use ddirac::compiled::{pair_programs, Traced};
 use ddirac::expression::{ExpressionSpec, ExpressionSystem};
-use ddirac::{solve, Coordinate, DerivativePath, Differentiation, InitialMomentum, Method, OutputOptions, Problem};
+use ddirac::{
+    solve, Coordinate, DerivativePath, Differentiation, InitialMomentum, Method, OutputOptions, Problem, System,
+};
 
 /// L = ½ẋ² − V(x) as text.
 fn oscillator(potential: &str) -> ExpressionSystem<1> {
@@ -51,6 +55,22 @@ fn a_piecewise_spring_written_with_max_and_min_compiles_and_follows_the_exact_mo
     for (k, q) in compiled.q.iter().enumerate().step_by(100) {
         let t = compiled.t[k];
         assert!((q[0] - exact(t)).abs() < 1e-5, "t = {t}: {} vs exact {}", q[0], exact(t));
+    }
+}
+
+/// The programs traced at x = 1 > 0 have no guards and give the force of the other side at x < 0:
+/// ∂L/∂x = −k1·x for x > 0, −k2·x for x < 0.
+#[test]
+fn min_and_max_are_operations_of_the_program_not_guarded_comparisons() {
+    let system = oscillator("0.5*k1*max(x, 0)^2 + 0.5*k2*min(x, 0)^2");
+    let f = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| system.lagrangian(&[base[0] + a[0]], &[b[0]]);
+    let programs = pair_programs(f, &[1.0], &[0.0]).unwrap();
+    assert!(programs.guards.is_empty(), "{} guards", programs.guards.len());
+    let mut out = [0.0; 3];
+    for (x, force) in [(0.5, -2.0), (-0.5, 0.5), (-2.0, 2.0)] {
+        programs.first.eval(&[x, 0.3], &mut Vec::new(), &mut out);
+        assert!((out[1] - force).abs() < 1e-15, "∂L/∂x at {x}: {} vs {force}", out[1]);
+        assert!((out[2] - 0.3).abs() < 1e-15, "∂L/∂ẋ at {x}: {}", out[2]);
     }
 }
 

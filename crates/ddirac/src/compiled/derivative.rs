@@ -22,6 +22,12 @@
 //! saves work (∂eˣ = u, ∂tan = 1 + u², ∂(x/y)/∂y = −u/y); atan2(x, y) = atan(x/y) has
 //! ∂/∂x = y/(x² + y²), ∂/∂y = −x/(x² + y²); xʸ with a variable exponent has ∂/∂x = y·u/x and
 //! ∂/∂y = u·ln x; |x| has sign(x), and sign(x) has 0.
+//!
+//! min(x, y) and max(x, y) have the one-sided derivatives of the operand they pick: ∂/∂y is the
+//! indicator s = [y < x] (for max [x < y], `Binary::Less`, whose own derivative is 0) and ∂/∂x is
+//! 1 − s. An adjoint or tangent is *gated* by the indicator (`Binary::Gate`: v where s ≠ 0, else 0)
+//! rather than multiplied by it, so that an infinite or NaN derivative of the operand not picked
+//! does not turn 0 · ∞ into NaN; a gated value has the derivative of the gate's value operand.
 
 use super::graph::{Graph, Node};
 use super::program::{Binary, Instruction, Program, Unary};
@@ -191,12 +197,13 @@ pub(super) fn check_finite(graph: &Graph, outputs: &[Node], n: usize) -> Result<
     Ok(())
 }
 
-/// A local derivative ∂u/∂x: a factor, or the reciprocal of a divisor (so that ū · 1/d is one
-/// division).
+/// A local derivative ∂u/∂x: a factor, the reciprocal of a divisor (so that ū · 1/d is one
+/// division), or an indicator (1 where u is x, 0 elsewhere) that gates v instead of multiplying it.
 #[derive(Debug, Clone, Copy)]
 enum Partial {
     Times(Node),
     Over(Node),
+    Where(Node),
 }
 
 impl Partial {
@@ -205,6 +212,7 @@ impl Partial {
         match self {
             Partial::Times(d) => g.mul(v, d),
             Partial::Over(d) => g.div(v, d),
+            Partial::Where(indicator) => g.binary(Binary::Gate, indicator, v),
         }
     }
 }
@@ -367,6 +375,21 @@ fn first_operand(g: &mut Graph, op: Binary, x: Node, y: Node, u: Node) -> Partia
             let r = squared_norm(g, x, y);
             Partial::Times(g.div(y, r))
         }
+        Binary::Min | Binary::Max => {
+            let one = g.constant(1.0);
+            let second = picks_second(g, op, x, y);
+            Partial::Where(g.sub(one, second))
+        }
+        // piecewise constant in x (for a gate, its indicator)
+        Binary::Less | Binary::Gate => Partial::Times(g.constant(0.0)),
+    }
+}
+
+/// 1 where min(x, y) or max(x, y) is y, else 0 (y < x, y > x: [`Binary::apply`]).
+fn picks_second(g: &mut Graph, op: Binary, x: Node, y: Node) -> Node {
+    match op {
+        Binary::Min => g.binary(Binary::Less, y, x),
+        _ => g.binary(Binary::Less, x, y),
     }
 }
 
@@ -381,6 +404,9 @@ fn second_operand(g: &mut Graph, op: Binary, x: Node, y: Node, u: Node) -> Parti
             return Partial::Times(g.mul(u, ln));
         }
         Binary::Div => g.div(u, y),
+        Binary::Min | Binary::Max => return Partial::Where(picks_second(g, op, x, y)),
+        Binary::Less => return Partial::Times(g.constant(0.0)),
+        Binary::Gate => return Partial::Where(x),
         Binary::Atan2 => {
             let r = squared_norm(g, x, y);
             g.div(x, r)

@@ -14,7 +14,8 @@
 //! - operands of + and × are ordered, so that a · b and b · a are one node;
 //! - xⁿ for a small integer n is expanded into the products of binary exponentiation (the same
 //!   products, in the same order, as `f64::powi`), a constant small integer power
-//!   xᶜ becomes that product too, x^½ is √x.
+//!   xᶜ becomes that product too, another constant integer power up to 1024 is `powi`, x^½ is √x;
+//! - min(x, x) and max(x, x) are x; a gate by a constant indicator is its operand or 0.
 //!
 //! The rewrites that drop a term (x · 0 = 0, x − x = 0) differ from IEEE arithmetic only where x is
 //! infinite or NaN, the merged scalings only where a product overflows or underflows. A node that does not depend on the inputs is always a constant after folding.
@@ -27,14 +28,19 @@ use std::collections::HashMap;
 use super::program::{Binary, Instruction, Program, Unary};
 
 /// The index of a node, which is also its register in an extracted program.
-pub(super) type Node = u32;
+pub(crate) type Node = u32;
 
 /// Powers xⁿ with |n| up to this are expanded into multiplications.
 const MAX_EXPANDED_POWER: i32 = 16;
 
+/// A constant integer exponent with |n| up to this is [`Instruction::Powi`], a larger one
+/// [`Binary::Pow`]. num-dual's `powi` forms the factors n(n−1) and n(n−1)(n−2) of the second and third
+/// derivatives in i32, which overflows beyond |n| = 1290; its `powf` forms them in floating point.
+const MAX_POWI: f64 = 1024.0;
+
 /// The graph: instructions in evaluation order, each with its value at the build point.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Graph {
+pub(crate) struct Graph {
     nodes: Vec<Instruction>,
     values: Vec<f64>,
     inputs: Vec<f64>,
@@ -43,32 +49,32 @@ pub(super) struct Graph {
 
 impl Graph {
     /// An empty graph.
-    pub(super) fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self::default()
     }
 
     /// How many nodes the graph has.
-    pub(super) fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.nodes.len()
     }
 
     /// The instruction of node `n`.
-    pub(super) fn instruction(&self, n: Node) -> Instruction {
+    pub(crate) fn instruction(&self, n: Node) -> Instruction {
         self.nodes[n as usize]
     }
 
     /// The inputs' values at the build point.
-    pub(super) fn point(&self) -> &[f64] {
+    pub(crate) fn point(&self) -> &[f64] {
         &self.inputs
     }
 
     /// The value of node `n` at the build point.
-    pub(super) fn value(&self, n: Node) -> f64 {
+    pub(crate) fn value(&self, n: Node) -> f64 {
         self.values[n as usize]
     }
 
     /// The constant of node `n`, if it is one.
-    pub(super) fn constant_of(&self, n: Node) -> Option<f64> {
+    pub(crate) fn constant_of(&self, n: Node) -> Option<f64> {
         match self.instruction(n) {
             Instruction::Const(bits) => Some(f64::from_bits(bits)),
             _ => None,
@@ -122,24 +128,24 @@ impl Graph {
     }
 
     /// A new input with value `value` at the build point; inputs are numbered in creation order.
-    pub(super) fn input(&mut self, value: f64) -> Node {
+    pub(crate) fn input(&mut self, value: f64) -> Node {
         let index = u32::try_from(self.inputs.len()).expect("inputs stay below 2³²");
         self.inputs.push(value);
         self.intern(Instruction::Input(index))
     }
 
     /// The node of input k, if the graph has it.
-    pub(super) fn input_node(&self, k: usize) -> Option<Node> {
+    pub(crate) fn input_node(&self, k: usize) -> Option<Node> {
         self.interned.get(&Instruction::Input(u32::try_from(k).ok()?)).copied()
     }
 
     /// The constant c.
-    pub(super) fn constant(&mut self, c: f64) -> Node {
+    pub(crate) fn constant(&mut self, c: f64) -> Node {
         self.intern(Instruction::constant(c))
     }
 
     /// op(x), simplified.
-    pub(super) fn unary(&mut self, op: Unary, x: Node) -> Node {
+    pub(crate) fn unary(&mut self, op: Unary, x: Node) -> Node {
         if let Some(c) = self.constant_of(x) {
             return self.constant(op.apply(c));
         }
@@ -155,32 +161,32 @@ impl Graph {
     }
 
     /// −x.
-    pub(super) fn neg(&mut self, x: Node) -> Node {
+    pub(crate) fn neg(&mut self, x: Node) -> Node {
         self.unary(Unary::Neg, x)
     }
 
     /// x + y.
-    pub(super) fn add(&mut self, x: Node, y: Node) -> Node {
+    pub(crate) fn add(&mut self, x: Node, y: Node) -> Node {
         self.binary(Binary::Add, x, y)
     }
 
     /// x − y.
-    pub(super) fn sub(&mut self, x: Node, y: Node) -> Node {
+    pub(crate) fn sub(&mut self, x: Node, y: Node) -> Node {
         self.binary(Binary::Sub, x, y)
     }
 
     /// x · y.
-    pub(super) fn mul(&mut self, x: Node, y: Node) -> Node {
+    pub(crate) fn mul(&mut self, x: Node, y: Node) -> Node {
         self.binary(Binary::Mul, x, y)
     }
 
     /// x / y.
-    pub(super) fn div(&mut self, x: Node, y: Node) -> Node {
+    pub(crate) fn div(&mut self, x: Node, y: Node) -> Node {
         self.binary(Binary::Div, x, y)
     }
 
     /// op(x, y), simplified.
-    pub(super) fn binary(&mut self, op: Binary, x: Node, y: Node) -> Node {
+    pub(crate) fn binary(&mut self, op: Binary, x: Node, y: Node) -> Node {
         if let (Some(a), Some(b)) = (self.constant_of(x), self.constant_of(y)) {
             return self.constant(op.apply(a, b));
         }
@@ -240,14 +246,24 @@ impl Graph {
                 None if self.is(x, 1.0) => x,
                 None => self.intern(Instruction::Binary(op, x, y)),
             },
-            Binary::Div | Binary::Atan2 => self.intern(Instruction::Binary(op, x, y)),
+            Binary::Min | Binary::Max if x == y => x,
+            Binary::Less if x == y => self.constant(0.0),
+            Binary::Gate => match self.constant_of(x) {
+                Some(c) if c != 0.0 => y,
+                Some(_) => self.constant(0.0),
+                None if self.is(y, 0.0) => y,
+                None => self.intern(Instruction::Binary(op, x, y)),
+            },
+            Binary::Div | Binary::Atan2 | Binary::Min | Binary::Max | Binary::Less => {
+                self.intern(Instruction::Binary(op, x, y))
+            }
         }
     }
 
-    /// xᵖ for a constant p: xⁿ for a small integer p, √x for p = ½.
+    /// xᵖ for a constant p: xⁿ for an integer p with |p| ≤ [`MAX_POWI`], √x for p = ½.
     fn constant_power(&mut self, x: Node, p: f64) -> Node {
-        if p == p.trunc() && p.abs() <= f64::from(MAX_EXPANDED_POWER) {
-            // `as` is exact: p is a small integer.
+        if p == p.trunc() && p.abs() <= MAX_POWI {
+            // `as` is exact: p is an integer of at most 1024.
             self.powi(x, p as i32)
         } else if p == 0.5 {
             self.unary(Unary::Sqrt, x)
@@ -259,7 +275,7 @@ impl Graph {
 
     /// xⁿ, expanded into multiplications for small |n| as `f64::powi` computes it: binary
     /// exponentiation over the bits of |n|, then a reciprocal for negative n.
-    pub(super) fn powi(&mut self, x: Node, n: i32) -> Node {
+    pub(crate) fn powi(&mut self, x: Node, n: i32) -> Node {
         if let Some(c) = self.constant_of(x) {
             return self.constant(c.powi(n));
         }
@@ -301,7 +317,7 @@ impl Graph {
     }
 
     /// Which nodes the `roots` read, directly or not (the roots included).
-    pub(super) fn live(&self, roots: &[Node]) -> Vec<bool> {
+    pub(crate) fn live(&self, roots: &[Node]) -> Vec<bool> {
         let mut live = vec![false; self.len()];
         for &r in roots {
             live[r as usize] = true;
@@ -319,7 +335,7 @@ impl Graph {
     /// The part of the graph the `roots` read, rebuilt in a new graph with input k replaced by the
     /// constant `replace[k]` where that is given. The kept inputs are renumbered in order. Returns
     /// the new graph and the roots' nodes in it.
-    pub(super) fn substitute(&self, roots: &[Node], replace: &[Option<f64>]) -> (Graph, Vec<Node>) {
+    pub(crate) fn substitute(&self, roots: &[Node], replace: &[Option<f64>]) -> (Graph, Vec<Node>) {
         let mut out = Graph::new();
         let sources: Vec<Node> = self
             .inputs
@@ -352,7 +368,7 @@ impl Graph {
     /// The `roots` rebuilt in this graph with input k replaced by node `replace[k]` where that is
     /// given, simplified anew (what a constant replacement makes constant folds). Nodes that read no
     /// replaced input stay as they are.
-    pub(super) fn replace_inputs(&mut self, roots: &[Node], replace: &[Option<Node>]) -> Vec<Node> {
+    pub(crate) fn replace_inputs(&mut self, roots: &[Node], replace: &[Option<Node>]) -> Vec<Node> {
         let live = self.live(roots);
         let mut map: Vec<Node> = (0..live.len() as Node).collect();
         for (n, &is_live) in live.iter().enumerate() {
@@ -373,21 +389,21 @@ impl Graph {
 
     /// How many operations (nodes that are neither inputs nor constants) `root` reads, itself
     /// included.
-    pub(super) fn operations(&self, root: Node) -> usize {
+    pub(crate) fn operations(&self, root: Node) -> usize {
         let live = self.live(&[root]);
         let operation = |n: usize| !matches!(self.nodes[n], Instruction::Input(_) | Instruction::Const(_));
         (0..self.len()).filter(|&n| live[n] && operation(n)).count()
     }
 
     /// Whether any of `roots` reads any of the nodes `sources`, directly or not.
-    pub(super) fn reads(&self, roots: &[Node], sources: &[Node]) -> bool {
+    pub(crate) fn reads(&self, roots: &[Node], sources: &[Node]) -> bool {
         let live = self.live(roots);
         sources.iter().any(|&s| live.get(s as usize).copied().unwrap_or(false))
     }
 
     /// The straight-line program computing `outputs`: the nodes they read, in order, renumbered.
     /// It reads as many inputs as the graph has.
-    pub(super) fn program(&self, outputs: &[Node]) -> Program {
+    pub(crate) fn program(&self, outputs: &[Node]) -> Program {
         let live = self.live(outputs);
         let mut register = vec![0; self.len()];
         let mut instructions = Vec::new();

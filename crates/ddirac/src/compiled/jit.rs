@@ -5,7 +5,8 @@
 //!
 //! - `+ − × ÷`, −x, 1/x, √x and |x| are single IEEE instructions, so their results equal
 //!   [`Program::eval`]'s bit for bit;
-//! - the sign of x is a comparison and a select, with [`Unary::Signum`]'s values (0 at ±0, NaN at NaN);
+//! - the sign of x is a comparison and a select, with [`Unary::Signum`]'s values (0 at ±0, NaN at NaN),
+//!   and so are min, max, the indicator x < y and the gate x ≠ 0 ? y : 0;
 //! - xⁿ multiplies by repeated squaring, unrolled for the program's n: the same products in the same
 //!   order as the runtime routine behind [`f64::powi`] (`__powidf2`), then 1/· for n < 0;
 //! - every other function calls, through an `extern "C"` wrapper, the very [`Unary::apply`] or
@@ -319,8 +320,23 @@ impl Emitter<'_> {
             Binary::Div => return self.b.ins().fdiv(x, y),
             Binary::Pow => wrappers::pow,
             Binary::Atan2 => wrappers::atan2,
+            Binary::Min | Binary::Max | Binary::Less | Binary::Gate => return self.select(op, x, y),
         };
         self.call(self.binary, function as *const u8, &[x, y])
+    }
+
+    /// The operations that pick one of two values by a comparison, as [`Binary::apply`] does:
+    /// min(x, y) = y < x ? y : x, max(x, y) = y > x ? y : x, x < y ? 1 : 0, and x ≠ 0 ? y : 0
+    /// (ordered comparisons, false with a NaN; ≠ is true with a NaN, as in Rust).
+    fn select(&mut self, op: Binary, x: Value, y: Value) -> Value {
+        let (condition, a, b, then, otherwise) = match op {
+            Binary::Min => (FloatCC::LessThan, y, x, y, x),
+            Binary::Max => (FloatCC::GreaterThan, y, x, y, x),
+            Binary::Less => (FloatCC::LessThan, x, y, self.constant(1.0), self.constant(0.0)),
+            _ => (FloatCC::NotEqual, x, self.constant(0.0), y, self.constant(0.0)),
+        };
+        let holds = self.b.ins().fcmp(condition, a, b);
+        self.b.ins().select(holds, then, otherwise)
     }
 
     /// [`Unary::Signum`]: 0 at ±0, NaN at NaN, ±1 with the sign of x otherwise.
@@ -405,7 +421,18 @@ mod tests {
             Tanh, Asinh, Acosh, Atanh,
         ]
     };
-    const BINARY: [Binary; 6] = [Binary::Add, Binary::Sub, Binary::Mul, Binary::Div, Binary::Pow, Binary::Atan2];
+    const BINARY: [Binary; 10] = [
+        Binary::Add,
+        Binary::Sub,
+        Binary::Mul,
+        Binary::Div,
+        Binary::Pow,
+        Binary::Atan2,
+        Binary::Min,
+        Binary::Max,
+        Binary::Less,
+        Binary::Gate,
+    ];
 
     /// Numbers that exercise signs, zeros, infinities, NaN, subnormals and domain edges.
     fn special() -> impl Iterator<Item = f64> {
@@ -462,7 +489,7 @@ mod tests {
         let instructions = [Instruction::Input(0), Instruction::Input(1)]
             .into_iter()
             .chain(BINARY.map(|op| Instruction::Binary(op, 0, 1)));
-        let program = Program { inputs: 2, instructions: instructions.collect(), outputs: (2..8).collect() };
+        let program = Program { inputs: 2, instructions: instructions.collect(), outputs: (2..12).collect() };
         for x in special() {
             for y in special() {
                 check(&program, &[x, y]);
@@ -592,7 +619,7 @@ mod tests {
             instructions.push(match op % 16 {
                 0 => Instruction::constant(c),
                 1..=4 => Instruction::Binary(BINARY[(op % 16 - 1) as usize], a, b),
-                5 => Instruction::Binary(BINARY[(b % 6) as usize], b, a),
+                5 => Instruction::Binary(BINARY[(b % 10) as usize], b, a),
                 6 => Instruction::Powi(a, b as i32 % 7 - 3),
                 7 => Instruction::Unary(Unary::Sin, a),
                 8 => Instruction::Unary(Unary::Cos, a),

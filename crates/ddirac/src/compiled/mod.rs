@@ -7,7 +7,8 @@ mod cache;
 mod cost;
 mod derivative;
 mod executable;
-mod graph;
+pub(crate) mod graph;
+mod interpreter;
 #[cfg(feature = "jit")]
 pub mod jit;
 mod linear_step;
@@ -18,6 +19,7 @@ pub mod trace;
 pub use cache::native_compilations;
 pub use cost::CompileCost;
 pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairPrograms};
+pub use interpreter::Interpreter;
 #[cfg(feature = "jit")]
 pub use jit::{JitError, NativeProgram};
 pub use linear_step::{LinearSolution, LinearStep};

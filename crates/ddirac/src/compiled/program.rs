@@ -106,6 +106,17 @@ pub enum Binary {
     Pow,
     /// atan2(x, y), the angle of the point (y, x)
     Atan2,
+    /// min(x, y): y if y < x, else x (so x when they are equal or y is NaN)
+    Min,
+    /// max(x, y): y if y > x, else x (so x when they are equal or y is NaN)
+    Max,
+    /// 1 if x < y, else 0 (also when either is NaN): which operand `Min` or `Max` picks, piecewise
+    /// constant
+    Less,
+    /// y where x ≠ 0, else 0: y gated by an indicator x. Unlike x · y, a gated-off y that is infinite
+    /// or NaN gives 0, so the derivative of the branch `Min` or `Max` did not take cannot leak into the
+    /// one it took.
+    Gate,
 }
 
 impl Binary {
@@ -119,6 +130,34 @@ impl Binary {
             Binary::Div => x / y,
             Binary::Pow => x.powf(y),
             Binary::Atan2 => x.atan2(y),
+            Binary::Min => {
+                if y < x {
+                    y
+                } else {
+                    x
+                }
+            }
+            Binary::Max => {
+                if y > x {
+                    y
+                } else {
+                    x
+                }
+            }
+            Binary::Less => {
+                if x < y {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            Binary::Gate => {
+                if x != 0.0 {
+                    y
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }

@@ -298,6 +298,10 @@ fn equal_expressions_share_nodes_and_trivial_ones_fold() {
     let (two, minus_two) = (g.constant(2.0), g.constant(-2.0));
     let folded = g.binary(super::Binary::Pow, two, minus_two);
     assert_eq!(g.constant_of(folded), Some(0.25));
+    let (min, max) = (super::Binary::Min, super::Binary::Max);
+    assert_eq!((g.binary(min, x, x), g.binary(max, y, y)), (x, y));
+    let (smaller, larger) = (g.binary(min, two, minus_two), g.binary(max, two, minus_two));
+    assert_eq!((g.constant_of(smaller), g.constant_of(larger)), (Some(-2.0), Some(2.0)));
 }
 
 #[test]

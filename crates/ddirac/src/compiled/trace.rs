@@ -12,7 +12,10 @@
 //! answered for the trace point and *guarded*: the recording keeps sign(x − y) as a [`Guard`] with
 //! the signs that give the same answer, and a program evaluated where a guard's sign is another one
 //! is not valid there (the caller then uses dual numbers for that point). Within its guards a
-//! program is the branch the trace took, with that branch's (one-sided) derivatives. Code that reads
+//! program is the branch the trace took, with that branch's (one-sided) derivatives. The choices of
+//! [`crate::Scalar::min_of`] and [`crate::Scalar::max_of`] (which text Lagrangians use) are not
+//! comparisons but operations of the program ([`Binary::Min`], [`Binary::Max`]), valid on both
+//! sides and without a guard. Code that reads
 //! the value itself ([`num_dual::DualStruct::re`]) may do anything with it; on an input-dependent
 //! number this makes the trace fail with [`NotCompiled::ValueInspected`] (the value at the trace point
 //! is still returned, so the code runs on). On constants both are harmless and allowed. Operations without an instruction in [`super::program`] (`%`, which
@@ -275,7 +278,7 @@ pub(super) fn trace(
 }
 
 /// In a trace that keeps runtime inputs, the input standing for `input` (made on first use with the
-/// value given then).
+/// value given then); min and max as operations of the program.
 impl crate::Scalar for Traced {
     fn runtime_input(input: RuntimeInput, value: f64) -> Option<Self> {
         RECORDING.with_borrow_mut(|r| {
@@ -291,6 +294,16 @@ impl crate::Scalar for Traced {
             };
             Some(Traced { node, trace: *trace })
         })
+    }
+
+    /// One [`Binary::Min`] node, valid on both sides of x = y.
+    fn min_of(self, other: Self) -> Self {
+        self.binary(Binary::Min, other)
+    }
+
+    /// One [`Binary::Max`] node, valid on both sides of x = y.
+    fn max_of(self, other: Self) -> Self {
+        self.binary(Binary::Max, other)
     }
 }
 

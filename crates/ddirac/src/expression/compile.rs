@@ -1,11 +1,14 @@
-//! Name resolution against a [`Scope`] and lowering of the syntax tree to the operation graph.
+//! Name resolution against a [`Scope`] and lowering of the syntax tree into the graph of the
+//! compiled IR ([`crate::compiled`]): variables are its inputs, in order, and every operation is
+//! interned with the graph's constant folding and merging of identical nodes.
 
 use std::collections::HashMap;
 
 use super::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
-use super::functions::{Binary, Function, Unary, FUNCTIONS};
-use super::graph::{Graph, Operand};
-use super::{definitions, emit, parse, ExpressionError, Origin, Program, Span};
+use super::functions::{Function, FUNCTIONS};
+use super::{definitions, parse, CompiledExpression, ExpressionError, Origin, Span};
+use crate::compiled::graph::{Graph, Node};
+use crate::compiled::Binary;
 
 /// What a name stands for.
 #[derive(Debug, Clone, PartialEq)]
@@ -17,7 +20,7 @@ pub(super) enum Entry {
 }
 
 /// The names an expression may use: variables (in the order of the values given to
-/// [`Program::eval`]), constants, definitions and names reserved with a reason.
+/// [`CompiledExpression::eval`]), constants, definitions and names reserved with a reason.
 ///
 /// Names should be distinct; when one is declared twice, the later declaration wins (the variable
 /// count still includes every variable declared).
@@ -80,40 +83,50 @@ impl Scope {
     /// Compiles `source`, reporting its errors as belonging to `origin` (errors inside a definition
     /// are reported with [`Origin::Definition`]). Every definition of the scope is checked, whether
     /// the expression uses it or not.
-    pub fn compile(&self, origin: Origin, source: &str) -> Result<Program, ExpressionError> {
-        let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
-        let mut compiler = Compiler { scope: self, graph: Graph::default(), done: HashMap::new() };
-        for (name, definition) in definitions::in_order(self)? {
-            let operand = compiler.lower(&definition, &Origin::Definition(name.to_owned()))?;
-            compiler.done.insert(name, operand);
-        }
-        let result = compiler.lower(&expr, &origin)?;
-        Ok(emit::program(&compiler.graph.nodes, result, self.variables))
+    pub fn compile(&self, origin: Origin, source: &str) -> Result<CompiledExpression, ExpressionError> {
+        let (graph, root) = self.lower(origin, source)?;
+        Ok(CompiledExpression::new(graph.program(&[root])))
     }
 
     /// Compiles a standalone expression ([`Origin::Expression`]).
-    pub fn compile_expression(&self, source: &str) -> Result<Program, ExpressionError> {
+    pub fn compile_expression(&self, source: &str) -> Result<CompiledExpression, ExpressionError> {
         self.compile(Origin::Expression, source)
+    }
+
+    /// The graph of `source` and its root node; input k of the graph is the k-th variable.
+    pub(super) fn lower(&self, origin: Origin, source: &str) -> Result<(Graph, Node), ExpressionError> {
+        let expr = parse(source).map_err(|error| ExpressionError::Syntax { origin: origin.clone(), error })?;
+        let mut graph = Graph::new();
+        let inputs = (0..self.variables).map(|_| graph.input(0.0)).collect();
+        let mut compiler = Compiler { scope: self, graph, inputs, done: HashMap::new() };
+        for (name, definition) in definitions::in_order(self)? {
+            let node = compiler.lower(&definition, &Origin::Definition(name.to_owned()))?;
+            compiler.done.insert(name, node);
+        }
+        let root = compiler.lower(&expr, &origin)?;
+        Ok((compiler.graph, root))
     }
 }
 
 struct Compiler<'s> {
     scope: &'s Scope,
     graph: Graph,
+    /// The node of each variable.
+    inputs: Vec<Node>,
     /// Definitions already lowered: all those an expression being lowered uses
     /// ([`definitions::in_order`]).
-    done: HashMap<&'s str, Operand>,
+    done: HashMap<&'s str, Node>,
 }
 
 impl Compiler<'_> {
-    fn lower(&mut self, expr: &Expr, origin: &Origin) -> Result<Operand, ExpressionError> {
+    fn lower(&mut self, expr: &Expr, origin: &Origin) -> Result<Node, ExpressionError> {
         Ok(match &expr.kind {
-            ExprKind::Number(value) => Operand::Const(*value),
+            ExprKind::Number(value) => self.graph.constant(*value),
             ExprKind::Name(name) => self.name(name, expr.span, origin)?,
             ExprKind::Unary { op, operand } => {
                 let operand = self.lower(operand, origin)?;
                 match op {
-                    UnaryOp::Neg => self.graph.unary(Unary::Neg, operand),
+                    UnaryOp::Neg => self.graph.neg(operand),
                     UnaryOp::Plus => operand,
                 }
             }
@@ -161,11 +174,11 @@ impl Compiler<'_> {
         })
     }
 
-    fn name(&mut self, name: &str, span: Span, origin: &Origin) -> Result<Operand, ExpressionError> {
+    fn name(&mut self, name: &str, span: Span, origin: &Origin) -> Result<Node, ExpressionError> {
         let scope = self.scope;
         match scope.entries.get_key_value(name) {
-            Some((_, Entry::Variable(index))) => Ok(self.graph.var(*index)),
-            Some((_, Entry::Constant(value))) => Ok(Operand::Const(*value)),
+            Some((_, Entry::Variable(index))) => Ok(self.inputs[*index]),
+            Some((_, Entry::Constant(value))) => Ok(self.graph.constant(*value)),
             Some((key, Entry::Definition(_))) => {
                 Ok(*self.done.get(key.as_str()).expect("definitions are lowered after the definitions they use"))
             }

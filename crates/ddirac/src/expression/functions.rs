@@ -1,6 +1,7 @@
-//! The operations of a compiled program and the functions of the language, each evaluated generically
-//! over the scalar. Constant folding evaluates the same code at f64, so a folded constant equals what
-//! the program would compute.
+//! The functions of the language, by name, and the operations of the compiled program
+//! ([`crate::compiled::Unary`], [`crate::compiled::Binary`]) they stand for.
+
+use crate::compiled::{Binary, Unary};
 
 /// The functions of the language, by name.
 pub const FUNCTIONS: &[&str] = &[
@@ -8,7 +9,7 @@ pub const FUNCTIONS: &[&str] = &[
     "pow", "min", "max",
 ];
 
-/// A function of the language.
+/// A function of the language: an operation of one or two operands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Function {
     Unary(Unary),
@@ -48,123 +49,49 @@ impl Function {
     }
 }
 
-/// Operations of one operand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) enum Unary {
-    Neg,
-    Recip,
-    Square,
-    Sin,
-    Cos,
-    Tan,
-    Asin,
-    Acos,
-    Atan,
-    Sinh,
-    Cosh,
-    Tanh,
-    Exp,
-    Ln,
-    Sqrt,
-    Abs,
-}
+#[cfg(test)]
+mod tests {
+    use num_dual::Dual64;
 
-impl Unary {
-    #[inline(always)]
-    pub(super) fn apply<D: crate::Scalar>(self, x: D) -> D {
-        match self {
-            Unary::Neg => -x,
-            Unary::Recip => x.recip(),
-            Unary::Square => x * x,
-            Unary::Sin => x.sin(),
-            Unary::Cos => x.cos(),
-            Unary::Tan => x.tan(),
-            Unary::Asin => x.asin(),
-            Unary::Acos => x.acos(),
-            Unary::Atan => x.atan(),
-            Unary::Sinh => x.sinh(),
-            Unary::Cosh => x.cosh(),
-            Unary::Tanh => x.tanh(),
-            Unary::Exp => x.exp(),
-            Unary::Ln => x.ln(),
-            Unary::Sqrt => x.sqrt(),
-            Unary::Abs => x.abs(),
-        }
-    }
-}
+    use super::FUNCTIONS;
+    use crate::compiled::{pair_programs, NativeProgram, Traced};
+    use crate::expression::Scope;
 
-/// Operations of two operands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) enum Binary {
-    Add,
-    Sub,
-    Mul,
-    Div,
-    /// x^y = exp(y ln x) for a non-constant exponent.
-    Pow,
-    /// atan2(y, x).
-    Atan2,
-    /// The smaller operand (the first when equal).
-    Min,
-    /// The larger operand (the first when equal).
-    Max,
-}
-
-impl Binary {
-    #[inline(always)]
-    pub(super) fn apply<D: crate::Scalar>(self, a: D, b: &D) -> D {
-        match self {
-            Binary::Add => a + b,
-            Binary::Sub => a - b,
-            Binary::Mul => a * b,
-            Binary::Div => a / b,
-            Binary::Pow => a.powd(*b),
-            Binary::Atan2 => a.atan2(*b),
-            Binary::Min => {
-                if *b < a {
-                    *b
-                } else {
-                    a
+    /// Every function gives the same value and first derivatives through the interpreter on dual
+    /// numbers and through native code compiled from one trace (at x < y, x > 0), also on the other
+    /// side of the kinks of `abs`, `min` and `max`.
+    #[test]
+    fn every_function_agrees_on_both_back_ends() {
+        let scope = Scope::new().variable("x").variable("y");
+        let points = [(0.3, 0.7), (0.7, 0.3), (-0.4, 0.2), (0.5, -0.6), (-0.8, -0.1)];
+        for name in FUNCTIONS {
+            let binary = matches!(*name, "atan2" | "pow" | "min" | "max");
+            let source = if binary { format!("{name}(x, y)") } else { format!("{name}(x)") };
+            let compiled = scope.compile_expression(&source).unwrap();
+            let f = |base: &[Traced; 2], a: &[Traced; 2], _: &[Traced; 2]| compiled.eval_with(|i| base[i] + a[i]);
+            let programs = pair_programs(f, &[0.3, 0.7], &[0.0; 2]).unwrap_or_else(|e| panic!("{source}: {e}"));
+            assert!(programs.guards.is_empty(), "{source}");
+            let native = NativeProgram::compile(&programs.first).unwrap();
+            let mut out = [0.0; 5];
+            let mut checked = 0;
+            for (x, y) in points {
+                let dual = |dx, dy| compiled.eval(&[Dual64::new(x, dx), Dual64::new(y, dy)]);
+                let (along_x, along_y) = (dual(1.0, 0.0), dual(0.0, 1.0));
+                let expected = [along_x.re, along_x.eps, along_y.eps];
+                if expected.iter().any(|v| !v.is_finite()) {
+                    continue;
                 }
-            }
-            Binary::Max => {
-                if *b > a {
-                    *b
-                } else {
-                    a
+                native.call(&[x, y, 0.0, 0.0], &mut out);
+                for (k, (&c, &d)) in out[..3].iter().zip(&expected).enumerate() {
+                    let what = ["value", "∂/∂x", "∂/∂y"][k];
+                    assert!(
+                        (c - d).abs() <= 1e-14 * d.abs().max(1.0),
+                        "{source} at ({x}, {y}), {what}: native {c}, dual {d}"
+                    );
                 }
+                checked += 1;
             }
-        }
-    }
-}
-
-/// Operations of one operand and an f64 constant c, on the cheap scalar path of the dual numbers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) enum Scalar {
-    /// x + c
-    Add,
-    /// x · c
-    Mul,
-    /// c − x
-    SubFrom,
-    /// c / x
-    DivInto,
-    /// x^c with an integer c (`powi`)
-    Powi,
-    /// x^c (`powf`)
-    Powf,
-}
-
-impl Scalar {
-    #[inline(always)]
-    pub(super) fn apply<D: crate::Scalar>(self, x: D, c: f64) -> D {
-        match self {
-            Scalar::Add => x + c,
-            Scalar::Mul => x * c,
-            Scalar::SubFrom => -x + c,
-            Scalar::DivInto => x.recip() * c,
-            Scalar::Powi => x.powi(c as i32),
-            Scalar::Powf => x.powf(c),
+            assert!(checked >= 2, "{source}: {checked} points in the domain");
         }
     }
 }

@@ -1,6 +1,6 @@
-//! Lagrangians written as text: a small expression language, compiled once to a flat program and
-//! evaluated generically over the scalar (f64 or any num-dual number), so that automatic
-//! differentiation gives every derivative exactly as for a Lagrangian written in Rust.
+//! Lagrangians written as text: a small expression language, compiled once to a program of the
+//! compiled IR and evaluated generically over the scalar (f64 or any num-dual number), so that
+//! automatic differentiation gives every derivative exactly as for a Lagrangian written in Rust.
 //!
 //! # Language
 //!
@@ -19,21 +19,27 @@
 //! names are `[A-Za-z_][A-Za-z0-9_]*`. The functions are `sin cos tan asin acos atan sinh cosh tanh
 //! exp ln log sqrt abs` (one argument; `log` is the natural logarithm, like `ln`) and `atan2(y, x)
 //! pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]). `x^n` (or `pow(x, n)`) with an integer constant
-//! n, |n| ≤ 1024, is `powi` (`x^2` is x·x, as in `powi`), with another constant exponent `powf`, and
+//! n, |n| ≤ 16, is the product of binary exponentiation (`x^2` is x·x, as in `powi`), with
+//! 16 < |n| ≤ 1024 `powi`, with another constant exponent `powf` (`x^0.5` is `sqrt(x)`), and
 //! otherwise `exp(n ln x)`.
-//! `min`/`max` pick one argument by value and carry that argument's derivatives.
+//! `min`/`max` pick one argument by value (the first when they are equal) and carry that argument's
+//! derivatives; compiled, they are one operation each, valid on both sides of the kink.
 //!
 //! # Compilation
 //!
-//! A [`Scope`] names the variables (in the order of the slice given to [`Program::eval`]), the
-//! constants (parameters) and the definitions (named expressions, which may refer to one another,
-//! but not in a cycle). [`Scope::compile`] resolves names, folds every subexpression that does not
-//! depend on a variable into an f64, merges identical subexpressions (so each definition and each
-//! repeated `sin(φ)` is computed once), pairs `sin`/`cos` of the same argument into one `sin_cos`,
-//! and allocates registers by linear scan. Definitions are lowered each after those it uses, in an
-//! order found without recursion, so that a long chain of definitions needs no deep stack. Folding
-//! and gathering of constant factors may change the last bits of a result relative to a literal
-//! left-to-right evaluation.
+//! A [`Scope`] names the variables (in the order of the slice given to
+//! [`CompiledExpression::eval`]), the constants (parameters) and the definitions (named expressions,
+//! which may refer to one another, but not in a cycle). [`Scope::compile`] resolves names and lowers
+//! the text into the graph of the compiled IR ([`crate::compiled`], the graph a trace of a Rust
+//! Lagrangian builds, with the same operations): every subexpression that does not depend on a
+//! variable is folded into an f64, identical subexpressions are merged (so each definition and each
+//! repeated `sin(φ)` is computed once), and exact scalings by powers of two are merged. The result
+//! is a [`crate::compiled::Program`] with two back ends: its interpreter
+//! ([`crate::compiled::Interpreter`], which pairs `sin`/`cos` of one argument into one `sin_cos`,
+//! keeps constant operands on the cheap scalar path of dual numbers and allocates registers by
+//! linear scan) and native code. Definitions are lowered each after those it uses, in an order found
+//! without recursion, so that a long chain of definitions needs no deep stack. Folding may change the
+//! last bits of a result relative to a literal left-to-right evaluation.
 //!
 //! Every token and syntax node carries its byte [`Span`] in its source, and every error names the
 //! source it belongs to ([`Origin`]: the Lagrangian, a definition, an exact solution), so that a
@@ -43,8 +49,8 @@
 //! ```
 //! use ddirac::expression::Scope;
 //! let scope = Scope::new().variable("x").variable("x_dot").constant("m", 2.0).definition("v2", "x_dot^2");
-//! let program = scope.compile_expression("0.5*m*v2 - cos(x)").unwrap();
-//! assert!((program.eval(&[0.0f64, 3.0]) - 8.0).abs() < 1e-15);
+//! let compiled = scope.compile_expression("0.5*m*v2 - cos(x)").unwrap();
+//! assert!((compiled.eval(&[0.0f64, 3.0]) - 8.0).abs() < 1e-15);
 //! ```
 //!
 //! [`ExpressionSystem`] turns a coordinate list, a Lagrangian, definitions and parameters into a
@@ -52,20 +58,18 @@
 
 mod ast;
 mod compile;
+mod compiled_expression;
 mod definitions;
-mod emit;
 mod error;
-mod eval;
 mod functions;
-mod graph;
 mod lexer;
 mod parser;
 mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use compile::Scope;
+pub use compiled_expression::CompiledExpression;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
-pub use eval::Program;
 pub use functions::FUNCTIONS;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};

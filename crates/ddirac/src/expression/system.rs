@@ -9,7 +9,7 @@
 //! the name.
 
 use super::compile::closest;
-use super::{ExpressionError, Origin, Program, Scope, FUNCTIONS};
+use super::{CompiledExpression, ExpressionError, Origin, Scope, FUNCTIONS};
 use crate::{Coordinate, DynSystem, Erased, System};
 
 /// The largest number of coordinates [`ExpressionSpec::into_dyn`] supports.
@@ -69,26 +69,27 @@ pub struct ExpressionSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExpressionSystem<const N: usize> {
     coordinates: [Coordinate; N],
-    lagrangian: Program,
+    lagrangian: CompiledExpression,
     open: OpenLagrangian,
-    exact: Vec<Option<Program>>,
+    exact: Vec<Option<CompiledExpression>>,
 }
 
 /// The Lagrangian with its parameters as variables after q and q̇, for traces that keep them as
 /// runtime inputs ([`crate::RuntimeInput::Parameter`]), so that one compiled program serves every
-/// value of them; and the parameters' values.
+/// value of them; and the parameters' values. The folded Lagrangian is the same graph with the
+/// parameters substituted as constants.
 #[derive(Debug, Clone, PartialEq)]
 struct OpenLagrangian {
-    program: Program,
+    program: CompiledExpression,
     parameters: Vec<f64>,
 }
 
 /// A checked and compiled spec, before its dimension is fixed.
 struct Compiled {
     coordinates: Vec<Coordinate>,
-    lagrangian: Program,
+    lagrangian: CompiledExpression,
     open: OpenLagrangian,
-    exact: Vec<Option<Program>>,
+    exact: Vec<Option<CompiledExpression>>,
 }
 
 impl<const N: usize> ExpressionSystem<N> {
@@ -107,8 +108,9 @@ impl<const N: usize> ExpressionSystem<N> {
         Ok(Self { coordinates, lagrangian: compiled.lagrangian, open: compiled.open, exact: compiled.exact })
     }
 
-    /// The compiled Lagrangian; its variables are q_0 … q_{N−1}, then their velocities.
-    pub fn lagrangian_program(&self) -> &Program {
+    /// The compiled Lagrangian with the parameters folded in; its variables are q_0 … q_{N−1}, then
+    /// their velocities.
+    pub fn lagrangian_program(&self) -> &CompiledExpression {
         &self.lagrangian
     }
 }
@@ -184,24 +186,24 @@ fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
         exact = exact.constant("pi", std::f64::consts::PI);
     }
     for (name, value) in &spec.parameters {
-        lagrangian = lagrangian.constant(name, *value);
+        lagrangian = lagrangian.variable(name);
         exact = exact.constant(name, *value);
     }
     for (name, source) in &spec.definitions {
         lagrangian = lagrangian.definition(name, source);
         exact = exact.unavailable(name, "definitions are not available in exact solutions");
     }
-    let mut open = lagrangian.clone();
-    for (name, _) in &spec.parameters {
-        open = open.variable(name);
-    }
-    let lagrangian = lagrangian.compile(Origin::Lagrangian, &spec.lagrangian)?;
-    let open = OpenLagrangian {
-        program: open.compile(Origin::Lagrangian, &spec.lagrangian)?,
-        parameters: spec.parameters.iter().map(|(_, v)| *v).collect(),
-    };
+    // One lowering with the parameters as inputs after q and q̇; the folded Lagrangian substitutes
+    // their values.
+    let (graph, root) = lagrangian.lower(Origin::Lagrangian, &spec.lagrangian)?;
+    let parameters: Vec<f64> = spec.parameters.iter().map(|(_, v)| *v).collect();
+    let mut values: Vec<Option<f64>> = vec![None; 2 * spec.coordinates.len()];
+    values.extend(parameters.iter().copied().map(Some));
+    let (folded, folded_root) = graph.substitute(&[root], &values);
+    let lagrangian = CompiledExpression::new(folded.program(&folded_root));
+    let open = OpenLagrangian { program: CompiledExpression::new(graph.program(&[root])), parameters };
 
-    let mut solutions: Vec<Option<Program>> = vec![None; spec.coordinates.len()];
+    let mut solutions: Vec<Option<CompiledExpression>> = vec![None; spec.coordinates.len()];
     for (name, source) in &spec.exact_solution {
         let origin = Origin::ExactSolution(name.clone());
         let Some(i) = spec.coordinates.iter().position(|c| &c.name == name) else {
