@@ -15,7 +15,7 @@ use num_dual::DualNum;
 
 use crate::mechanics::pontryagin::block_gradient;
 use crate::reduction::trivialization::SplitVector;
-use crate::{Connection, DiscreteLagrangian, Error, Rule, Split, System};
+use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
 
 /// The value and partial derivatives of a reduced Lagrangian l± at one point.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,7 +62,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         let split = Split::new(&system.coordinates());
         if (connection.n_x(), connection.n_g()) != (split.n_x(), split.n_g()) {
             return Err(Error::Invalid {
-                what: "connection".into(),
+                what: Input::Connection,
                 why: format!(
                     "K is {}×{}, the system has {} group and {} shape coordinates",
                     connection.n_g(),
@@ -137,7 +137,11 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     {
         let full = |q: &SplitVector| -> Result<[f64; N], Error> {
             let v = q.to_full(&self.split)?;
-            v.as_slice().try_into().map_err(|_| Error::Size { what: "q".into(), expected: N, found: v.len() })
+            v.as_slice().try_into().map_err(|_| Error::Size {
+                what: Input::Argument("q".into()),
+                expected: N,
+                found: v.len(),
+            })
         };
         let d = self.ld.derivatives(&full(q0)?, &full(q1)?);
         Ok((
@@ -231,7 +235,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         for &(what, found, shape) in items {
             let expected = if shape { self.split.n_x() } else { self.split.n_g() };
             if found != expected {
-                return Err(Error::Size { what: what.into(), expected, found });
+                return Err(Error::Size { what: Input::Argument(what.into()), expected, found });
             }
         }
         Ok(())

@@ -25,7 +25,7 @@
 //! Every map checks the sizes of its arguments against the connection (n_x = dim Σ, n_g = dim G) and
 //! returns [`Error::Size`] on a mismatch.
 
-use crate::{Connection, Error, Split};
+use crate::{Connection, Error, Input, Split};
 
 /// A vector of Q = Σ × G, or a covector of Q* = Σ* × G*, as its shape part `x` and group part `g`.
 ///
@@ -178,7 +178,7 @@ pub struct TrivializedCovectorMinusDual {
 ///
 /// ```
 /// use ddirac::{reduction::trivialization::{lambda_d, SplitVector}, Connection};
-/// let k = Connection::new(&[vec![-0.5]], 1, 1).unwrap();
+/// let k = Connection::new(&[vec![-0.5]]).unwrap();
 /// let t = lambda_d(&k, &SplitVector::new(vec![0.0], vec![0.0]), &SplitVector::new(vec![2.0], vec![1.0])).unwrap();
 /// assert_eq!(t.g1, vec![2.0]); // 1 − (0 − 0.5 · 2)
 /// ```
@@ -371,7 +371,7 @@ pub(crate) fn expect_len(what: &str, v: &[f64], expected: usize) -> Result<(), E
     if v.len() == expected {
         Ok(())
     } else {
-        Err(Error::Size { what: what.to_owned(), expected, found: v.len() })
+        Err(Error::Size { what: Input::Argument(what.to_owned()), expected, found: v.len() })
     }
 }
 
