@@ -4,7 +4,7 @@
 //! the initial momentum lies on the primary constraint p = ∂L/∂v.
 //!
 //! [`check`] reports the findings; [`CheckReport::verdict`] says what a run of a method makes of
-//! them. [`crate::integrate`] calls both before its first step, so a run refuses exactly what the
+//! them. [`crate::Stepper::new`] calls both before its first step, so a run refuses exactly what the
 //! check refuses, with the same error.
 
 use crate::diagnostics::{Warning, WarningKind};

@@ -37,16 +37,7 @@ pub fn integrate<S: System<N>, const N: usize>(
     }
     let mut stepper = Stepper::new(system, problem, method)?;
     stepper.set_wrap_angles(output.wrap_angles);
-    while !stepper.is_finished() {
-        // The row of step k carries L_d(q_k, q_{k+1}): it is taken before the step and reported after.
-        let row = (stepper.k() % output.every == 0).then(|| stepper.row());
-        let step = stepper.step()?;
-        if let Some(mut row) = row {
-            row.discrete_energy = Some(step.discrete_energy);
-            observer(&row.as_row()).map_err(Error::Output)?;
-        }
-    }
-    observer(&stepper.row().as_row()).map_err(Error::Output)?;
+    stepper.run_to_end(output.every, observer)?;
     stepper.finish()
 }
 

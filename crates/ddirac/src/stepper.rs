@@ -20,6 +20,7 @@ use crate::diagnostics::{
     Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Summary, Warning, WarningKind, Warnings,
 };
 use crate::energy_jump::{Jump, JumpAction, Monitor};
+use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
 use crate::reduction::reduced::LagrangePoincareDirac;
@@ -115,19 +116,13 @@ fn first_increment<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[
 /// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
 /// ```
 pub struct Stepper<'a, S, const N: usize> {
-    system: &'a S,
-    method: Method,
-    h: f64,
-    steps: usize,
-    split: Split,
-    kinds: [CoordinateKind; N],
+    context: Context<'a, S, N>,
     schemes: Schemes<'a, S, N>,
     derivative_path: DerivativePath,
     /// The Jacobian memory of a first step: none kept, with the relative cost of the derivatives.
     fresh_kept: newton::KeptJacobian<N>,
     /// The warnings of the check before the first step, with which every record starts.
     check_warnings: Vec<Warning>,
-    wrap_angles: bool,
     started: Instant,
     progress: Progress<N>,
 }
@@ -152,6 +147,17 @@ macro_rules! equipped {
             Schemes::Reduced($e) => $body,
         }
     };
+}
+
+/// What the steps and rows of a stepper read but do not change.
+struct Context<'a, S, const N: usize> {
+    system: &'a S,
+    method: Method,
+    h: f64,
+    steps: usize,
+    split: Split,
+    kinds: [CoordinateKind; N],
+    wrap_angles: bool,
 }
 
 /// Everything a step changes: the state of step k, the solver's memory and the run's record.
@@ -339,17 +345,19 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         };
         progress.kept = fresh_kept.clone();
         Ok(Self {
-            system,
-            method: method.clone(),
-            h,
-            steps,
-            split: setup.split,
-            kinds,
+            context: Context {
+                system,
+                method: method.clone(),
+                h,
+                steps,
+                split: setup.split,
+                kinds,
+                wrap_angles: false,
+            },
             schemes,
             derivative_path,
             fresh_kept,
             check_warnings,
-            wrap_angles: false,
             started,
             progress,
         })
@@ -358,7 +366,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// Report angles wrapped to (−π, π] (in [`Stepper::row`] and the summary's final q) instead of
     /// continuous; the default is continuous.
     pub fn set_wrap_angles(&mut self, wrap: bool) {
-        self.wrap_angles = wrap;
+        self.context.wrap_angles = wrap;
     }
 
     /// The current step index k.
@@ -368,59 +376,75 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
 
     /// The current time t_k = k h.
     pub fn t(&self) -> f64 {
-        self.progress.k as f64 * self.h
+        self.progress.k as f64 * self.context.h
     }
 
     /// The number of steps N of the problem.
     pub fn steps(&self) -> usize {
-        self.steps
+        self.context.steps
     }
 
     /// Whether all N steps are taken.
     pub fn is_finished(&self) -> bool {
-        self.progress.k >= self.steps
+        self.progress.k >= self.context.steps
     }
 
     /// Takes step k → k + 1: solves the step equations, checks the new state, watches the energy.
     ///
     /// Returns [`Error::Interrupted`] when a stop was requested ([`crate::interrupt`]) and an error
     /// when the run is finished, Newton's method fails, the state becomes non-finite or the energy
-    /// jumps under [`JumpAction::Fail`]. A failed step leaves the stepper at step k (only its kept
-    /// Newton Jacobian is dropped); restarting from a saved state retries it bit for bit.
+    /// jumps under [`JumpAction::Fail`]. A failed solve or a non-finite state leaves the stepper at
+    /// step k (only its kept Newton Jacobian is dropped; restarting from a saved state retries the
+    /// step bit for bit); an energy jump is reported once the step that shows it is taken.
+    #[inline]
     pub fn step(&mut self) -> Result<StepReport, Error> {
         if self.is_finished() {
             return Err(Error::Invalid {
                 what: Input::Steps,
-                why: format!("the run has taken all its {} steps", self.steps),
+                why: format!("the run has taken all its {} steps", self.context.steps),
             });
         }
         if crate::interrupt::requested() {
             return Err(Error::Interrupted { step: self.k(), t: self.t() });
         }
-        let (method, h, split) = (&self.method, self.h, &self.split);
-        equipped!(&self.schemes, e => self.progress.step(e, method, h, split))
+        equipped!(&self.schemes, e => self.progress.step(e, &self.context))
     }
 
     /// The row of the current step k: q_k, p_k, the Hamiltonian and the momentum map (the discrete
     /// energy of step k is known once it is taken: [`StepReport::discrete_energy`]). The summary's
     /// energy statistics are over the rows taken.
     pub fn row(&mut self) -> OwnedRow<N> {
-        let progress = &mut self.progress;
-        let p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&progress.momenta));
-        let mut momentum_map = [0.0; N];
-        momentum_map.iter_mut().zip(self.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
-        let energy = legendre::hamiltonian(self.system, progress.config.base(), &p);
-        progress.record.energy.push(energy);
-        OwnedRow {
-            k: progress.k,
-            t: progress.k as f64 * self.h,
-            q: progress.config.output(self.wrap_angles),
-            p,
-            energy,
-            discrete_energy: None,
-            momentum_map,
-            n_g: self.split.n_g(),
-        }
+        equipped!(&self.schemes, e => self.progress.row(&e.scheme, &self.context))
+    }
+
+    /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
+    /// (what [`crate::integrate`] reports), each with the discrete energy of its step. The same
+    /// steps and rows as [`Stepper::step`] and [`Stepper::row`], without choosing the scheme at each
+    /// step.
+    pub(crate) fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+    ) -> Result<(), Error> {
+        let (context, progress) = (&self.context, &mut self.progress);
+        equipped!(&self.schemes, e => {
+            let mut until_report = 0;
+            while progress.k < context.steps {
+                if crate::interrupt::requested() {
+                    return Err(Error::Interrupted { step: progress.k, t: progress.k as f64 * context.h });
+                }
+                // The row of step k carries L_d(q_k, q_{k+1}): it is taken before the step, reported
+                // after it.
+                let row = (until_report == 0).then(|| progress.row(&e.scheme, context));
+                until_report = if until_report == 0 { every - 1 } else { until_report - 1 };
+                let step = progress.step(e, context)?;
+                if let Some(mut row) = row {
+                    row.discrete_energy = Some(step.discrete_energy);
+                    observer(&row.as_row()).map_err(Error::Output)?;
+                }
+            }
+            observer(&progress.row(&e.scheme, context).as_row()).map_err(Error::Output)
+        })
     }
 
     /// The state of step k, with all that a stepper of the same system, method and step needs to
@@ -428,7 +452,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     pub fn state(&self) -> State<N> {
         let progress = &self.progress;
         let p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&progress.momenta));
-        let memory = Memory { method: self.method.clone(), h: self.h, progress: progress.clone() };
+        let memory = Memory { method: self.context.method.clone(), h: self.context.h, progress: progress.clone() };
         State { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
     }
 
@@ -441,12 +465,12 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
     /// entry.
     pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
-        if state.k > self.steps {
-            let why = format!("step {} is beyond the problem's last step {}", state.k, self.steps);
+        if state.k > self.context.steps {
+            let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
             return Err(Error::Invalid { what: Input::State, why });
         }
         if let Some(memory) = &state.memory {
-            if memory.method != self.method || memory.h.to_bits() != self.h.to_bits() {
+            if memory.method != self.context.method || memory.h.to_bits() != self.context.h.to_bits() {
                 let why = "it was taken from a stepper with another method or step; restart from its cold form \
                            (`State::cold`)";
                 return Err(Error::Invalid { what: Input::State, why: why.into() });
@@ -457,10 +481,10 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
         }
-        let dq = first_increment(self.system, &state.q, &state.p, self.h);
+        let dq = first_increment(self.context.system, &state.q, &state.p, self.context.h);
         let start = (state.k, state.q, state.p);
         let warnings = self.check_warnings.clone();
-        let (kinds, split, method) = (self.kinds, &self.split, &self.method);
+        let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
         let mut progress =
             equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, dq, kinds, split, method, warnings));
         progress.kept = self.fresh_kept.clone();
@@ -473,23 +497,24 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// statistics, Newton counts and warnings.
     pub fn finish(self) -> Result<Summary, Error> {
         let Progress { k, config, momenta, mut monitor, mut record, .. } = self.progress;
-        if let Some(warning) = jumped(monitor.finish(), self.method.energy_jump.action)? {
-            record.warnings.push(warning);
+        if let Some(jump) = monitor.finish() {
+            jumped(jump, self.context.method.energy_jump.action, &mut record.warnings)?;
         }
-        let final_q = config.output(self.wrap_angles).to_vec();
+        let final_q = config.output(self.context.wrap_angles).to_vec();
         let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&momenta)).to_vec();
         let (k0, q0, p0) = record.start;
-        let reference_error = self.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.h).and_then(|exact| {
-            let unwrapped = config.unwrapped();
-            let terms: Vec<f64> =
-                exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
-            (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
-        });
+        let reference_error =
+            self.context.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
+                let unwrapped = config.unwrapped();
+                let terms: Vec<f64> =
+                    exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+            });
         let j_scale = record.j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         Ok(Summary {
-            coordinates: self.system.coordinates().iter().map(|c| c.name.clone()).collect(),
+            coordinates: self.context.system.coordinates().iter().map(|c| c.name.clone()).collect(),
             steps: k - k0,
-            step: self.h,
+            step: self.context.h,
             final_q,
             final_p,
             energy: record.energy.stats(),
@@ -526,6 +551,26 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
 }
 
 impl<const N: usize> Progress<N> {
+    /// The row of step k; its energy goes into the record.
+    #[inline]
+    fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<'_, S, N>) -> OwnedRow<N> {
+        let p = scheme.p_from_momenta(&self.momenta);
+        let mut momentum_map = [0.0; N];
+        momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
+        let energy = legendre::hamiltonian(context.system, self.config.base(), &p);
+        self.record.energy.push(energy);
+        OwnedRow {
+            k: self.k,
+            t: self.k as f64 * context.h,
+            q: self.config.output(context.wrap_angles),
+            p,
+            energy,
+            discrete_energy: None,
+            momentum_map,
+            n_g: context.split.n_g(),
+        }
+    }
+
     /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq`; the
     /// kept Jacobian is to be set by the caller.
     fn cold(
@@ -561,14 +606,15 @@ impl<const N: usize> Progress<N> {
         }
     }
 
-    /// Takes step k with scheme `e`; changes nothing but the kept Jacobian when it fails.
-    fn step<Sc: Scheme<N>>(
+    /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
+    /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
+    #[inline]
+    fn step<S, Sc: Scheme<N>>(
         &mut self,
         e: &Equipped<Sc, N>,
-        method: &Method,
-        h: f64,
-        split: &Split,
+        context: &Context<'_, S, N>,
     ) -> Result<StepReport, Error> {
+        let (method, h, split) = (&context.method, context.h, &context.split);
         let k = self.k;
         let t = k as f64 * h;
         let base = e.scheme.base(self.config.base());
@@ -580,29 +626,21 @@ impl<const N: usize> Progress<N> {
         if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
             return Err(Error::Diverged { step: k, t, what: "state" });
         }
-        let action = method.energy_jump.action;
-        let watched = if action != JumpAction::Ignore {
-            let p_next = e.scheme.p_from_momenta(&momenta_next);
-            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
-            let mut monitor = self.monitor.clone();
-            let jump = monitor.push((k, t), pv - discrete_energy / h, pv.abs());
-            Some((p_next, monitor, jumped(jump, action)?))
-        } else {
-            None
-        };
-
         let record = &mut self.record;
         record.discrete_energy.push(discrete_energy);
         if fell_back {
             let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
             record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
         }
-        if let Some((p_next, monitor, warning)) = watched {
-            (self.p_now, self.monitor) = (p_next, monitor);
-            if let Some(warning) = warning {
-                record.warnings.push(warning);
-            }
-        }
+        let action = method.energy_jump.action;
+        let jump = if action != JumpAction::Ignore {
+            let p_next = e.scheme.p_from_momenta(&momenta_next);
+            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
+            self.p_now = p_next;
+            self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
+        } else {
+            None
+        };
         record.newton.total_iterations += stats.iterations;
         record.newton.total_jacobians += stats.jacobians;
         record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
@@ -613,20 +651,22 @@ impl<const N: usize> Progress<N> {
         self.predictor.push(z);
         self.k += 1;
         record.drift(split, &self.momenta);
+        if let Some(jump) = jump {
+            jumped(jump, action, &mut record.warnings)?;
+        }
         Ok(StepReport { k, discrete_energy, newton: stats })
     }
 }
 
 /// A jump of the energy as the method asks: an error, or a warning.
-fn jumped(jump: Option<Jump>, action: JumpAction) -> Result<Option<Warning>, Error> {
-    match jump {
-        Some(jump) if action == JumpAction::Fail => {
-            let (step, t) = jump.at;
-            Err(Error::EnergyJump { step, t, message: jump.describe() })
-        }
-        Some(jump) => Ok(Some(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()))),
-        None => Ok(None),
+#[cold]
+fn jumped(jump: Jump, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
+    if action == JumpAction::Fail {
+        let (step, t) = jump.at;
+        return Err(Error::EnergyJump { step, t, message: jump.describe() });
     }
+    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
+    Ok(())
 }
 
 /// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
@@ -642,6 +682,7 @@ struct Solved<const N: usize> {
 /// Solves one step's equations for the unknowns z: by the compiled closed-form step when the run
 /// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
 /// solution if it failed the test, or from the predictor.
+#[inline]
 fn solve_step<Sc: Scheme<N>, const N: usize>(
     e: &Equipped<Sc, N>,
     base: &[f64; N],

@@ -68,6 +68,30 @@ fn non_finite_initial_data_is_rejected() {
     assert!(e.to_string().contains("entry 3 of the initial momentum p"), "{e}");
 }
 
+/// Velocities whose Legendre transform is not finite: the error names the momentum they map to.
+#[test]
+fn velocities_with_a_non_finite_momentum_are_rejected() {
+    let problem = Problem::new(0.1, 10, vec![0.0; 4], InitialMomentum::Velocity(vec![1.0, 0.0, 1e308, 1.0]));
+    let e = run_err(&ChargedParticle { m: 10.0, b0: 1.0 }, &problem, &Method::default());
+    assert!(
+        matches!(&e, Error::NonFinite { what: Input::MomentumFromVelocity, entry: Some(2), value } if value.is_infinite()),
+        "{e:?}"
+    );
+    assert_eq!(e.to_string(), "entry 3 of the initial momentum p = ∂L/∂v(q0, v0) is not finite (inf)");
+}
+
+/// A built-in system refuses a parameter by name, in a typed field.
+#[test]
+fn parameters_are_named_in_their_errors() {
+    let build = ddirac::systems::find("charged_particle").unwrap().build;
+    let e = build(&[("m".into(), -1.0)]).err().expect("a negative mass is refused");
+    assert!(matches!(&e, Error::Invalid { what: Input::Parameter(name), .. } if name == "m"), "{e:?}");
+    assert_eq!(e.to_string(), "invalid parameter `m`: must be positive, got -1");
+    let e = build(&[("B0".into(), f64::NAN)]).err().expect("NaN is refused");
+    assert!(matches!(&e, Error::NonFinite { what: Input::Parameter(name), entry: None, .. } if name == "B0"));
+    assert_eq!(e.to_string(), "parameter `B0` is not finite (NaN)");
+}
+
 #[test]
 fn bad_step_and_step_count_are_rejected() {
     let cp = ChargedParticle::default();
