@@ -194,7 +194,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
 
 /// K as written to the summary: the spec's rows, or zeros of the right shape.
 fn connection(plan: &Plan) -> Vec<Vec<f64>> {
-    plan.method.connection.clone().unwrap_or_else(|| {
+    plan.method.connection.as_ref().map(ddirac::Connection::rows).unwrap_or_else(|| {
         let coordinates = plan.system.coordinates();
         let n_x = coordinates.iter().filter(|c| c.role == ddirac::Role::Shape).count();
         vec![vec![0.0; n_x]; coordinates.len() - n_x]

@@ -164,7 +164,7 @@ impl ReducedCovectorMinus {
 ///
 /// ```
 /// use ddirac_oracle::{dirac_structure::{omega_flat_plus, ReducedStepPlus}, trivialization::SplitVector};
-/// let k = ddirac::Connection::new(&[vec![2.0]], 1, 1).unwrap();
+/// let k = ddirac::Connection::new(&[vec![2.0]]).unwrap();
 /// let step = ReducedStepPlus { x0: vec![1.0], w0: vec![5.0], mu0: vec![1.0],
 ///     q1: SplitVector::new(vec![3.0], vec![7.0]), w1: vec![0.0], mu1: vec![1.0] };
 /// let image = omega_flat_plus(&k, &step).unwrap();

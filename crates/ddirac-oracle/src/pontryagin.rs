@@ -33,7 +33,7 @@
 
 use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
 use ddirac::Scalar;
-use ddirac::{Connection, DiscreteLagrangian, Error, Split, System};
+use ddirac::{Connection, DiscreteLagrangian, Error, Input, Split, System};
 
 use crate::dirac_structure::Signs;
 use crate::gradient::{block_gradient, Dual};
@@ -463,11 +463,15 @@ fn pairing<D: Scalar, const N: usize>(p: &[D; N], a: &[D; N], b: &[D; N]) -> D {
 
 fn check_curve(q: usize, aux: usize, momenta: usize) -> Result<usize, Error> {
     if q < 2 {
-        return Err(Error::Size { what: "curve configurations q_0 … q_N (N ≥ 1)".into(), expected: 2, found: q });
+        return Err(Error::Size {
+            what: Input::Argument("curve configurations q_0 … q_N (N ≥ 1)".into()),
+            expected: 2,
+            found: q,
+        });
     }
     for (what, found) in [("auxiliary points", aux), ("momenta", momenta)] {
         if found != q - 1 {
-            return Err(Error::Size { what: format!("curve {what}"), expected: q - 1, found });
+            return Err(Error::Size { what: Input::Argument(format!("curve {what}")), expected: q - 1, found });
         }
     }
     Ok(q - 1)
@@ -475,20 +479,26 @@ fn check_curve(q: usize, aux: usize, momenta: usize) -> Result<usize, Error> {
 
 fn check_lengths(items: &[(usize, usize)]) -> Result<(), Error> {
     match items.iter().find(|(found, expected)| found != expected) {
-        Some(&(found, expected)) => Err(Error::Size { what: "argument of e_d".into(), expected, found }),
+        Some(&(found, expected)) => {
+            Err(Error::Size { what: Input::Argument("argument of e_d".into()), expected, found })
+        }
         None => Ok(()),
     }
 }
 
 fn array<const N: usize>(v: &[f64]) -> Result<[f64; N], Error> {
-    v.try_into().map_err(|_| Error::Size { what: "vector".into(), expected: N, found: v.len() })
+    v.try_into().map_err(|_| Error::Size { what: Input::Argument("vector".into()), expected: N, found: v.len() })
 }
 
 type Points<const N: usize> = Vec<[f64; N]>;
 
 fn trajectory_arrays<const N: usize>(q: &[Vec<f64>], p: &[Vec<f64>]) -> Result<(Points<N>, Points<N>), Error> {
     if p.len() != q.len() {
-        return Err(Error::Size { what: "momenta of the trajectory".into(), expected: q.len(), found: p.len() });
+        return Err(Error::Size {
+            what: Input::Argument("momenta of the trajectory".into()),
+            expected: q.len(),
+            found: p.len(),
+        });
     }
     check_curve(q.len(), q.len().saturating_sub(1), q.len().saturating_sub(1))?;
     let q = q.iter().map(|v| array(v)).collect::<Result<Vec<_>, _>>()?;

@@ -12,7 +12,7 @@
 
 use ddirac::reduction::reduced_lagrangian::ReducedLagrangian;
 use ddirac::Scalar;
-use ddirac::{Error, System};
+use ddirac::{Error, Input, System};
 
 use crate::gradient::block_gradient;
 use crate::trivialization::SplitVector;
@@ -74,7 +74,7 @@ pub fn ld_partials<S: System<N>, const N: usize>(
 ) -> Result<(SplitVector, SplitVector), Error> {
     let full = |q: &SplitVector| -> Result<[f64; N], Error> {
         let v = q.to_full(&reduction.split)?;
-        v.as_slice().try_into().map_err(|_| Error::Size { what: "q".into(), expected: N, found: v.len() })
+        v.as_slice().try_into().map_err(|_| Error::Size { what: Input::Argument("q".into()), expected: N, found: v.len() })
     };
     let d = reduction.ld.derivatives(&full(q0)?, &full(q1)?);
     Ok((
@@ -131,7 +131,7 @@ fn check_sizes<S>(reduction: &ReducedLagrangian<'_, S>, x0: &[f64], x1: &[f64], 
     let (n_x, n_g) = (reduction.split.n_x(), reduction.split.n_g());
     for (what, found, expected) in [("x0", x0.len(), n_x), ("x1", x1.len(), n_x), ("gamma", gamma.len(), n_g)] {
         if found != expected {
-            return Err(Error::Size { what: what.into(), expected, found });
+            return Err(Error::Size { what: Input::Argument(what.into()), expected, found });
         }
     }
     Ok(())

@@ -27,7 +27,7 @@
 //! Every map checks the sizes of its arguments against the connection (n_x = dim Σ, n_g = dim G) and
 //! returns [`Error::Size`] on a mismatch.
 
-use ddirac::{Connection, Error, Split};
+use ddirac::{Connection, Error, Input, Split};
 
 /// A vector of Q = Σ × G, or a covector of Q* = Σ* × G*, as its shape part `x` and group part `g`.
 ///
@@ -182,7 +182,7 @@ pub struct TrivializedCovectorMinusDual {
 /// ```
 /// use ddirac::Connection;
 /// use ddirac_oracle::trivialization::{lambda_d, SplitVector};
-/// let k = Connection::new(&[vec![-0.5]], 1, 1).unwrap();
+/// let k = Connection::new(&[vec![-0.5]]).unwrap();
 /// let t = lambda_d(&k, &SplitVector::new(vec![0.0], vec![0.0]), &SplitVector::new(vec![2.0], vec![1.0])).unwrap();
 /// assert_eq!(t.g1, vec![2.0]); // 1 − (0 − 0.5 · 2)
 /// ```
@@ -376,7 +376,7 @@ pub(crate) fn expect_len(what: &str, v: &[f64], expected: usize) -> Result<(), E
     if v.len() == expected {
         Ok(())
     } else {
-        Err(Error::Size { what: what.to_owned(), expected, found: v.len() })
+        Err(Error::Size { what: Input::Argument(what.to_owned()), expected, found: v.len() })
     }
 }
 

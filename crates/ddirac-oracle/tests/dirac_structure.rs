@@ -29,7 +29,8 @@ fn reduced_run<S: System<4>>(
     variant: Variant,
     k: &[Vec<f64>],
 ) -> Vec<Point> {
-    let method = Method { rule, variant, reduced: true, connection: Some(k.to_vec()), ..Method::default() };
+    let method =
+        Method { rule, variant, reduced: true, connection: Some(Connection::new(k).unwrap()), ..Method::default() };
     let solution = solve(system, problem, &method, &OutputOptions::default()).expect("the run succeeds");
     let split = Split::new(&system.coordinates());
     assert_eq!(solution.q.len(), problem.steps + 1);
@@ -127,7 +128,7 @@ fn charged_particle_plus_run_lies_in_the_reduced_dirac_structure() {
     let system = ChargedParticle::default();
     let k = vec![vec![0.0; 3]];
     let points = reduced_run(&system, &ChargedParticle::paper_problem(100), Rule::Left, Variant::Plus, &k);
-    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k).unwrap()).unwrap();
     let (dirac, general) = check_plus(&reduction, &k, &points);
     eprintln!("charged particle (+): Dirac residual {dirac:.2e}, general form {general:.2e}");
     assert!(dirac < TOLERANCE && general < TOLERANCE);
@@ -138,7 +139,7 @@ fn charged_particle_minus_run_satisfies_the_corrected_equations_only() {
     let system = ChargedParticle::default();
     let k = vec![vec![0.0; 3]];
     let points = reduced_run(&system, &ChargedParticle::paper_problem(100), Rule::Left, Variant::Minus, &k);
-    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k, 3, 1).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Left, 0.2, Connection::new(&k).unwrap()).unwrap();
     let (dirac, corrected, printed) = check_minus(&reduction, &k, &points);
     eprintln!("charged particle (−): Dirac {dirac:.2e}, corrected {corrected:.2e}, printed (min) {printed:.2e}");
     assert!(dirac < TOLERANCE && corrected < TOLERANCE);
@@ -152,9 +153,9 @@ fn two_body_problem() -> Problem {
 #[test]
 fn two_body_plus_run_with_centre_of_mass_connection() {
     let system = TwoBody::default();
-    let k = system.centre_of_mass_connection();
+    let k = system.centre_of_mass_connection().unwrap().rows();
     let points = reduced_run(&system, &two_body_problem(), Rule::Midpoint, Variant::Plus, &k);
-    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k).unwrap()).unwrap();
     let (dirac, general) = check_plus(&reduction, &k, &points);
     eprintln!("two bodies (+): Dirac residual {dirac:.2e}, general form {general:.2e}");
     assert!(dirac < TOLERANCE && general < TOLERANCE);
@@ -166,9 +167,9 @@ fn two_body_plus_run_with_centre_of_mass_connection() {
 #[test]
 fn two_body_minus_run_satisfies_the_corrected_equations_only() {
     let system = TwoBody::default();
-    let k = system.centre_of_mass_connection();
+    let k = system.centre_of_mass_connection().unwrap().rows();
     let points = reduced_run(&system, &two_body_problem(), Rule::Midpoint, Variant::Minus, &k);
-    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k, 2, 2).unwrap()).unwrap();
+    let reduction = ReducedLagrangian::new(&system, Rule::Midpoint, 0.01, Connection::new(&k).unwrap()).unwrap();
     let (dirac, corrected, printed) = check_minus(&reduction, &k, &points);
     eprintln!("two bodies (−): Dirac {dirac:.2e}, corrected {corrected:.2e}, printed (min) {printed:.2e}");
     assert!(dirac < TOLERANCE && corrected < TOLERANCE);
@@ -176,7 +177,7 @@ fn two_body_minus_run_satisfies_the_corrected_equations_only() {
 }
 
 fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> ReducedLagrangian<'a, TwoBody> {
-    ReducedLagrangian::new(system, Rule::Trapezoid, 0.1, Connection::new(k, 2, 2).unwrap()).unwrap()
+    ReducedLagrangian::new(system, Rule::Trapezoid, 0.1, Connection::new(k).unwrap()).unwrap()
 }
 
 fn assert_close(a: &SplitVector, b: &SplitVector, tol: f64) {

@@ -36,7 +36,7 @@ fn inputs() -> impl Strategy<Value = (Vec<f64>, Vec<Vec<f64>>, Vec<f64>)> {
 
 fn connection(k: &[f64]) -> Connection {
     let rows: Vec<Vec<f64>> = k.chunks(N_X).map(<[f64]>::to_vec).collect();
-    Connection::new(&rows, N_X, N_G).unwrap()
+    Connection::new(&rows).unwrap()
 }
 
 /// K as an nalgebra matrix, for closed forms computed independently of the library.
@@ -172,7 +172,7 @@ fn charged_particle_initial_data_of_section_7_1() {
 fn two_body_momenta_trivialize_to_relative_and_total_momentum() {
     let system = TwoBody::default();
     let split = Split::new(&system.coordinates());
-    let c = Connection::new(&system.centre_of_mass_connection(), 2, 2).unwrap();
+    let c = system.centre_of_mass_connection().unwrap();
     let (q, v) = ([0.3, -0.2, 1.0, 0.5], [0.25, -0.5, 0.7, 1.1]);
     let p = legendre::momentum(&system, &q, &v);
     let t = lambda_hat(&c, &SplitVector::from_full(&split, &q).unwrap(), &SplitVector::from_full(&split, &p).unwrap())

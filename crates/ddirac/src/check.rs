@@ -4,16 +4,16 @@
 //! the initial momentum lies on the primary constraint p = ∂L/∂v.
 //!
 //! [`check`] reports the findings; [`CheckReport::verdict`] says what a run of a method makes of
-//! them. [`crate::integrate`] calls both before its first step, so a run refuses exactly what the
+//! them. [`crate::Stepper::new`] calls both before its first step, so a run refuses exactly what the
 //! check refuses, with the same error.
 
 use crate::diagnostics::{Warning, WarningKind};
-use crate::integrator::Setup;
 use crate::mechanics::legendre;
 use crate::periodicity::{periodicity_deviations, PERIODICITY_TOLERANCE};
 use crate::reduction::invariance::{invariance_deviations, INVARIANCE_TOLERANCE};
 use crate::sampling::{self, Deviation, ENOUGH};
-use crate::{DiscreteLagrangian, Error, InitialMomentum, Method, Problem, System};
+use crate::stepper::Setup;
+use crate::{DiscreteLagrangian, Error, Hypothesis, InitialMomentum, Method, Problem, System};
 
 /// Relative tolerance of the primary-constraint check.
 pub const CONSTRAINT_TOLERANCE: f64 = 1e-8;
@@ -116,7 +116,7 @@ impl CheckReport {
                 });
             }
             if !f.decided() {
-                return Err(self.undecided(&f.coordinate, "the 2π-periodicity of L in the angle"));
+                return Err(self.undecided(&f.coordinate, Hypothesis::Periodicity));
             }
         }
         if method.reduced {
@@ -131,7 +131,7 @@ impl CheckReport {
                         tolerance: self.invariance_tolerance,
                     }
                 } else if !f.decided() {
-                    self.undecided(&f.coordinate, "the invariance of L_d under the group coordinate")
+                    self.undecided(&f.coordinate, Hypothesis::Invariance)
                 } else {
                     continue;
                 };
@@ -160,9 +160,10 @@ impl CheckReport {
         Ok(warnings)
     }
 
-    fn undecided(&self, coordinate: &str, what: &str) -> Error {
+    fn undecided(&self, coordinate: &str, hypothesis: Hypothesis) -> Error {
         Error::Undecided {
-            what: format!("{what} `{coordinate}`"),
+            hypothesis,
+            coordinate: coordinate.to_owned(),
             samples: self.invariance.iter().chain(&self.periodicity).map(|f| f.samples).min().unwrap_or(0),
             wanted: sampling::WANTED,
         }

@@ -216,7 +216,7 @@ impl Warnings {
 pub struct Summary {
     /// Coordinate names, in order.
     pub coordinates: Vec<String>,
-    /// Number of steps N.
+    /// Number of steps the summary covers: N for a whole run (see [`crate::Stepper::finish`]).
     pub steps: usize,
     /// Step size h.
     pub step: f64,
@@ -224,7 +224,7 @@ pub struct Summary {
     pub final_q: Vec<f64>,
     /// p_N.
     pub final_p: Vec<f64>,
-    /// The Hamiltonian over the reported rows.
+    /// The Hamiltonian over the reported rows (the rows taken with [`crate::Stepper::row`]).
     pub energy: Stats,
     /// L_d(q_k, q_{k+1}) over all steps.
     pub discrete_energy: Stats,
@@ -234,7 +234,7 @@ pub struct Summary {
     pub newton: NewtonSummary,
     /// How the step derivatives were evaluated.
     pub derivatives: DerivativePath,
-    /// Wall-clock time of the integration loop.
+    /// Wall-clock time from the preparation of the derivatives to the summary.
     pub wall_seconds: f64,
     /// ‖q(T) − q_N‖ on the coordinates the exact solution gives, when the system has one.
     pub reference_error: Option<f64>,

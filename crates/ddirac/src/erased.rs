@@ -1,9 +1,14 @@
-//! A type-erased layer over [`System`] for the command line and bindings: one object-safe trait,
-//! so that callers need not know a system's type or its number of coordinates.
+//! A type-erased layer over [`System`] for the command line and bindings: object-safe traits, so
+//! that callers need not know a system's type or its number of coordinates.
+
+use std::any::Any;
+use std::sync::Arc;
 
 use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
-use crate::{CheckReport, Coordinate, Error, Method, OutputOptions, Problem, System};
+use crate::{
+    CheckReport, Coordinate, Error, Input, Method, OutputOptions, OwnedRow, Problem, State, StepReport, Stepper, System,
+};
 
 /// A system whose type and dimension are erased.
 pub trait DynSystem: Send + Sync {
@@ -21,6 +26,9 @@ pub trait DynSystem: Send + Sync {
 
     /// Checks a problem without integrating; see [`crate::check`].
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error>;
+
+    /// A stepper for a problem; see [`Stepper::new`].
+    fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error>;
 }
 
 /// Wraps a system with `N` coordinates as a [`DynSystem`].
@@ -50,5 +58,201 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
 
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {
         crate::check(&self.0, problem, method)
+    }
+
+    fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error> {
+        Ok(Box::new(Stepper::new(&self.0, problem, method)?))
+    }
+}
+
+/// A [`Stepper`] whose system type and dimension are erased; vectors are `Vec`s.
+///
+/// ```
+/// use ddirac::{DynState, DynSystem, Erased, Method, Rule, systems::ChargedParticle};
+/// let system: Box<dyn DynSystem> = Box::new(Erased(ChargedParticle::default()));
+/// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
+/// let mut stepper = system.stepper(&ChargedParticle::paper_problem(100), &method).unwrap();
+/// stepper.step().unwrap();
+/// let saved = stepper.state();
+/// let second = stepper.step().unwrap();
+/// stepper.restart(&saved).unwrap();
+/// assert_eq!(stepper.step().unwrap(), second);
+/// // A cold state from q and p only; the sizes are checked.
+/// assert!(stepper.restart(&DynState::new(0, vec![0.0; 4], vec![1.0, 0.0, 1.0, 1.0])).is_ok());
+/// assert!(stepper.restart(&DynState::new(0, vec![0.0; 3], vec![1.0, 0.0, 1.0])).is_err());
+/// ```
+pub trait DynStepper {
+    /// The current step index k.
+    fn k(&self) -> usize;
+
+    /// The current time t_k.
+    fn t(&self) -> f64;
+
+    /// The number of steps N of the problem.
+    fn steps(&self) -> usize;
+
+    /// Whether all N steps are taken.
+    fn is_finished(&self) -> bool;
+
+    /// Report angles wrapped to (−π, π]; see [`Stepper::set_wrap_angles`].
+    fn set_wrap_angles(&mut self, wrap: bool);
+
+    /// Takes step k → k + 1; see [`Stepper::step`].
+    fn step(&mut self) -> Result<StepReport, Error>;
+
+    /// The row of the current step; see [`Stepper::row`].
+    fn row(&mut self) -> DynRow;
+
+    /// The state of the current step; see [`Stepper::state`].
+    fn state(&self) -> DynState;
+
+    /// Continues from a state; see [`Stepper::restart`]. An error for a state of another number of
+    /// coordinates.
+    fn restart(&mut self, state: &DynState) -> Result<(), Error>;
+
+    /// The summary of the run; see [`Stepper::finish`].
+    fn finish(self: Box<Self>) -> Result<Summary, Error>;
+}
+
+impl<S: System<N>, const N: usize> DynStepper for Stepper<'_, S, N> {
+    fn k(&self) -> usize {
+        Stepper::k(self)
+    }
+
+    fn t(&self) -> f64 {
+        Stepper::t(self)
+    }
+
+    fn steps(&self) -> usize {
+        Stepper::steps(self)
+    }
+
+    fn is_finished(&self) -> bool {
+        Stepper::is_finished(self)
+    }
+
+    fn set_wrap_angles(&mut self, wrap: bool) {
+        Stepper::set_wrap_angles(self, wrap);
+    }
+
+    fn step(&mut self) -> Result<StepReport, Error> {
+        Stepper::step(self)
+    }
+
+    fn row(&mut self) -> DynRow {
+        Stepper::row(self).into()
+    }
+
+    fn state(&self) -> DynState {
+        Stepper::state(self).into()
+    }
+
+    fn restart(&mut self, state: &DynState) -> Result<(), Error> {
+        if let Some(typed) = state.typed.as_ref().and_then(|t| t.downcast_ref::<State<N>>()) {
+            return Stepper::restart(self, typed);
+        }
+        let sized = |v: &[f64]| -> Result<[f64; N], Error> {
+            v.try_into().map_err(|_| Error::Size { what: Input::State, expected: N, found: v.len() })
+        };
+        Stepper::restart(self, &State::new(state.k, sized(&state.q)?, sized(&state.p)?))
+    }
+
+    fn finish(self: Box<Self>) -> Result<Summary, Error> {
+        Stepper::finish(*self)
+    }
+}
+
+/// A [`State`] whose dimension is erased. A state taken from a stepper keeps the stepper's memory
+/// for a bit-for-bit restart of a stepper of the same system, method and step.
+#[derive(Clone)]
+pub struct DynState {
+    k: usize,
+    q: Vec<f64>,
+    p: Vec<f64>,
+    /// The [`State`] of a stepper, when the state was taken from one.
+    typed: Option<Arc<dyn Any + Send + Sync>>,
+}
+
+impl DynState {
+    /// A cold state at step `k` from a configuration `q` and canonical momenta `p`; see [`State::new`].
+    pub fn new(k: usize, q: Vec<f64>, p: Vec<f64>) -> Self {
+        Self { k, q, p, typed: None }
+    }
+
+    /// This state without the stepper's memory; see [`State::cold`].
+    pub fn cold(&self) -> Self {
+        Self::new(self.k, self.q.clone(), self.p.clone())
+    }
+
+    /// The step index k.
+    pub fn k(&self) -> usize {
+        self.k
+    }
+
+    /// The configuration q_k, angles unwrapped.
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The canonical momenta p_k.
+    pub fn p(&self) -> &[f64] {
+        &self.p
+    }
+
+    /// Whether the state holds a stepper's memory.
+    pub fn is_warm(&self) -> bool {
+        self.typed.is_some()
+    }
+}
+
+impl std::fmt::Debug for DynState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DynState")
+            .field("k", &self.k)
+            .field("q", &self.q)
+            .field("p", &self.p)
+            .field("warm", &self.is_warm())
+            .finish()
+    }
+}
+
+impl<const N: usize> From<State<N>> for DynState {
+    fn from(state: State<N>) -> Self {
+        let (k, q, p) = (state.k(), state.q().to_vec(), state.p().to_vec());
+        let typed: Option<Arc<dyn Any + Send + Sync>> = state.is_warm().then(|| Arc::new(state) as _);
+        Self { k, q, p, typed }
+    }
+}
+
+/// A row of the trajectory with its vectors as `Vec`s ([`DynStepper::row`]); see [`OwnedRow`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynRow {
+    /// Step index k.
+    pub k: usize,
+    /// Time t_k = k h.
+    pub t: f64,
+    /// Configuration q_k.
+    pub q: Vec<f64>,
+    /// Canonical momenta p_k.
+    pub p: Vec<f64>,
+    /// The Hamiltonian H(q_k, p_k).
+    pub energy: f64,
+    /// L_d(q_k, q_{k+1}), once step k is taken.
+    pub discrete_energy: Option<f64>,
+    /// The momentum map J(q_k, p_k) = p_g.
+    pub momentum_map: Vec<f64>,
+}
+
+impl<const N: usize> From<OwnedRow<N>> for DynRow {
+    fn from(row: OwnedRow<N>) -> Self {
+        Self {
+            k: row.k,
+            t: row.t,
+            q: row.q.to_vec(),
+            p: row.p.to_vec(),
+            energy: row.energy,
+            discrete_energy: row.discrete_energy,
+            momentum_map: row.momentum_map().to_vec(),
+        }
     }
 }

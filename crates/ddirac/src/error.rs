@@ -10,17 +10,19 @@ pub enum Error {
     #[error("{what} has {found} entries, but the system has {expected} coordinates")]
     Size {
         /// What was given.
-        what: String,
+        what: Input,
         /// Entries expected.
         expected: usize,
         /// Entries found.
         found: usize,
     },
     /// An input value is NaN or infinite.
-    #[error("{what} is not finite ({value})")]
+    #[error("{} is not finite ({value})", Entry(what, *entry))]
     NonFinite {
         /// Which input.
-        what: String,
+        what: Input,
+        /// The position of the value in it (from 0), when it is a vector.
+        entry: Option<usize>,
         /// The offending value.
         value: f64,
     },
@@ -28,7 +30,7 @@ pub enum Error {
     #[error("invalid {what}: {why}")]
     Invalid {
         /// Which input.
-        what: String,
+        what: Input,
         /// Why it is rejected.
         why: String,
     },
@@ -75,12 +77,15 @@ pub enum Error {
     /// A hypothesis of the run could not be tested: L_d is finite at too few pairs near the initial
     /// data.
     #[error(
-        "{what} could not be tested: L_d is finite at only {samples} of the {wanted} pairs sought near \
-         the initial data"
+        "{hypothesis} `{coordinate}` could not be tested: L_d is finite at only {samples} of the {wanted} \
+         pairs sought near the initial data"
     )]
     Undecided {
         /// The hypothesis.
-        what: String,
+        hypothesis: Hypothesis,
+        /// The coordinate it concerns: a group coordinate for the invariance, an angle for the
+        /// periodicity.
+        coordinate: String,
         /// Pairs with a finite L_d.
         samples: usize,
         /// Pairs sought.
@@ -141,6 +146,94 @@ pub enum Error {
     /// The consumer of the output rows failed (e.g. a full disk).
     #[error("writing output failed: {0}")]
     Output(#[source] Box<dyn std::error::Error + Send + Sync>),
+}
+
+/// The input an error is about: a field of [`crate::Problem`], [`crate::Method`] or
+/// [`crate::OutputOptions`], a system's parameter, or the state a stepper restarts from. Its display
+/// is the name error messages use.
+///
+/// ```
+/// use ddirac::{Error, Input, InitialMomentum, Method, OutputOptions, Problem, solve, systems::ChargedParticle};
+/// let problem = Problem::new(0.1, 10, vec![0.0; 3], InitialMomentum::Momentum(vec![0.0; 4]));
+/// let error = solve(&ChargedParticle::default(), &problem, &Method::default(), &OutputOptions::default()).unwrap_err();
+/// assert!(matches!(error, Error::Size { what: Input::InitialConfiguration, expected: 4, found: 3 }));
+/// assert_eq!(error.to_string(), "initial configuration q has 3 entries, but the system has 4 coordinates");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Input {
+    /// The step size h ([`crate::Problem::step`]).
+    Step,
+    /// The number of steps ([`crate::Problem::steps`]).
+    Steps,
+    /// How often rows are reported ([`crate::OutputOptions::every`]).
+    Every,
+    /// The initial configuration q0 ([`crate::Problem::q0`]).
+    InitialConfiguration,
+    /// The initial momentum p0 as given ([`crate::InitialMomentum::Momentum`]).
+    InitialMomentum,
+    /// The initial velocity v0 as given ([`crate::InitialMomentum::Velocity`]).
+    InitialVelocity,
+    /// The initial momentum p0 = ∂L/∂v(q0, v0) that the given velocity v0 maps to.
+    MomentumFromVelocity,
+    /// The connection K ([`crate::Method::connection`]).
+    Connection,
+    /// A parameter of a system, by name.
+    Parameter(String),
+    /// The state a stepper restarts from ([`crate::Stepper::restart`]); its entries are those of q,
+    /// then those of p.
+    State,
+    /// An argument of a function of the library, by the name its documentation gives it.
+    Argument(String),
+}
+
+impl std::fmt::Display for Input {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Input::Step => f.write_str("step"),
+            Input::Steps => f.write_str("steps"),
+            Input::Every => f.write_str("output.every"),
+            Input::InitialConfiguration => f.write_str("initial configuration q"),
+            Input::InitialMomentum => f.write_str("initial momentum p"),
+            Input::InitialVelocity => f.write_str("initial velocity v"),
+            Input::MomentumFromVelocity => f.write_str("initial momentum p = ∂L/∂v(q0, v0)"),
+            Input::Connection => f.write_str("connection"),
+            Input::Parameter(name) => write!(f, "parameter `{name}`"),
+            Input::State => f.write_str("state (q, p)"),
+            Input::Argument(name) => f.write_str(name),
+        }
+    }
+}
+
+/// An input, or one entry of it: "entry 2 of the initial configuration q".
+struct Entry<'a>(&'a Input, Option<usize>);
+
+impl std::fmt::Display for Entry<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.1 {
+            Some(i) => write!(f, "entry {} of the {}", i + 1, self.0),
+            None => write!(f, "{}", self.0),
+        }
+    }
+}
+
+/// A hypothesis of a run that is tested before its first step ([`crate::check`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Hypothesis {
+    /// The invariance of L_d under translations of a group coordinate (paper §4).
+    Invariance,
+    /// The 2π-periodicity of L in an angle coordinate (paper §6).
+    Periodicity,
+}
+
+impl std::fmt::Display for Hypothesis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Hypothesis::Invariance => "the invariance of L_d under the group coordinate",
+            Hypothesis::Periodicity => "the 2π-periodicity of L in the angle",
+        })
+    }
 }
 
 /// A time t_k = k·h as people write it: at most 12 significant digits (72.1, not 72.10000000000001).

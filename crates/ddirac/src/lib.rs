@@ -7,7 +7,9 @@
 //! A [`System`] knows its Lagrangian, coordinates and symmetry; a [`Problem`] adds the step, the
 //! number of steps and initial data; a [`Method`] chooses the quadrature [`Rule`], the (+)/(−)
 //! [`Variant`], reduced or unreduced equations and the [`Connection`]; [`integrate`] (streaming rows)
-//! or [`solve`] (keeping them) joins the three.
+//! or [`solve`] (keeping them) joins the three, and a [`Stepper`] takes their run one step at a time,
+//! with a [`State`] to save and restart from. [`DynSystem`] erases the system's type and dimension for
+//! the command line and bindings.
 //!
 //! ```
 //! use ddirac::{solve, Method, OutputOptions, Rule, systems::ChargedParticle};
@@ -41,21 +43,23 @@ pub mod reduction;
 pub mod sampling;
 mod scalar;
 mod scheme;
+mod stepper;
 mod system;
 pub mod systems;
 
 pub use check::{check, CheckReport, Finding, CONSTRAINT_TOLERANCE};
 pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
 pub use energy_jump::{EnergyJump, JumpAction};
-pub use erased::{DynSystem, Erased};
-pub use error::{Error, Time};
+pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased};
+pub use error::{Error, Hypothesis, Input, Time};
 pub use integrator::{integrate, solve, OutputError};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;
 /// The scalar trait user Lagrangians are written against (`DualNum<Primitive = f64>`), re-exported so that
 /// a system and the engine always agree on its version.
 pub use num_dual;
-pub use problem::{Differentiation, InitialMomentum, Method, OutputOptions, Problem, Variant};
+pub use problem::{Differentiation, InitialData, InitialMomentum, Method, OutputOptions, Problem, Variant};
 pub use reduction::connection::Connection;
 pub use scalar::{RuntimeInput, Scalar};
+pub use stepper::{OwnedRow, State, StepReport, Stepper};
 pub use system::{Coordinate, CoordinateKind, Role, Split, System};

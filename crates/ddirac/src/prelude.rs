@@ -22,6 +22,6 @@
 
 pub use crate::num_dual::DualNum;
 pub use crate::{
-    check, integrate, solve, Coordinate, Error, InitialMomentum, Method, OutputOptions, Problem, Role, Rule, Solution,
-    System, Variant,
+    check, integrate, solve, Connection, Coordinate, Error, InitialMomentum, Method, OutputOptions, Problem, Role,
+    Rule, Solution, State, Stepper, System, Variant,
 };

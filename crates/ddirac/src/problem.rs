@@ -2,7 +2,7 @@
 //! connection, Newton options): the two things that, joined with a [`System`](crate::System), make
 //! an integration.
 
-use crate::{EnergyJump, Error, NewtonOptions, Rule};
+use crate::{Connection, EnergyJump, Error, Input, NewtonOptions, Rule};
 
 /// How the initial momentum is given.
 #[derive(Debug, Clone, PartialEq)]
@@ -43,31 +43,77 @@ impl Problem {
         self.step * self.steps as f64
     }
 
+    /// A problem for a system with `N` coordinates from arrays, so that the compiler checks the sizes:
+    /// initial configuration `q0` and canonical momenta `p0`.
+    ///
+    /// ```
+    /// use ddirac::{InitialMomentum, Problem};
+    /// let problem = Problem::with_momentum(0.2, 100, [0.0; 4], [1.0, 0.0, 1.0, 1.0]);
+    /// assert_eq!(problem, Problem::new(0.2, 100, vec![0.0; 4], InitialMomentum::Momentum(vec![1.0, 0.0, 1.0, 1.0])));
+    /// assert_eq!(problem.initial_data::<4>().unwrap().0, [0.0; 4]);
+    /// assert!(problem.initial_data::<3>().is_err());
+    /// ```
+    pub fn with_momentum<const N: usize>(step: f64, steps: usize, q0: [f64; N], p0: [f64; N]) -> Self {
+        Self::new(step, steps, q0.to_vec(), InitialMomentum::Momentum(p0.to_vec()))
+    }
+
+    /// A problem for a system with `N` coordinates from arrays: initial configuration `q0` and
+    /// velocities `v0` (mapped to momenta by the Legendre transform).
+    ///
+    /// ```
+    /// let problem = ddirac::Problem::with_velocity(0.01, 10, [1.0, 0.0], [0.0, 1.2]);
+    /// assert_eq!(problem.initial_data::<2>().unwrap().1, ddirac::InitialData::Velocity([0.0, 1.2]));
+    /// ```
+    pub fn with_velocity<const N: usize>(step: f64, steps: usize, q0: [f64; N], v0: [f64; N]) -> Self {
+        Self::new(step, steps, q0.to_vec(), InitialMomentum::Velocity(v0.to_vec()))
+    }
+
+    /// The initial data as arrays for a system with `N` coordinates, checked as a run checks them
+    /// (sizes and finite values; step and number of steps too).
+    pub fn initial_data<const N: usize>(&self) -> Result<([f64; N], InitialData<N>), Error> {
+        self.validate(N)?;
+        let sized = |v: &[f64]| -> [f64; N] { v.try_into().expect("validated size") };
+        let initial = match &self.initial {
+            InitialMomentum::Momentum(p) => InitialData::Momentum(sized(p)),
+            InitialMomentum::Velocity(v) => InitialData::Velocity(sized(v)),
+        };
+        Ok((sized(&self.q0), initial))
+    }
+
     /// Checks sizes and values against a system with `n` coordinates.
     pub(crate) fn validate(&self, n: usize) -> Result<(), Error> {
         if !(self.step.is_finite() && self.step > 0.0) {
             return Err(Error::Invalid {
-                what: "step".into(),
+                what: Input::Step,
                 why: format!("must be positive and finite, got {}", self.step),
             });
         }
         if self.steps == 0 {
-            return Err(Error::Invalid { what: "steps".into(), why: "must be at least 1".into() });
+            return Err(Error::Invalid { what: Input::Steps, why: "must be at least 1".into() });
         }
         let (what, v) = match &self.initial {
-            InitialMomentum::Momentum(p) => ("initial momentum p", p),
-            InitialMomentum::Velocity(v) => ("initial velocity v", v),
+            InitialMomentum::Momentum(p) => (Input::InitialMomentum, p),
+            InitialMomentum::Velocity(v) => (Input::InitialVelocity, v),
         };
-        for (name, values) in [("initial configuration q", &self.q0), (what, v)] {
+        for (what, values) in [(Input::InitialConfiguration, &self.q0), (what, v)] {
             if values.len() != n {
-                return Err(Error::Size { what: name.into(), expected: n, found: values.len() });
+                return Err(Error::Size { what, expected: n, found: values.len() });
             }
-            if let Some((i, &x)) = values.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-                return Err(Error::NonFinite { what: format!("entry {} of the {name}", i + 1), value: x });
+            if let Some((i, &value)) = values.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                return Err(Error::NonFinite { what, entry: Some(i), value });
             }
         }
         Ok(())
     }
+}
+
+/// The initial momentum or velocity of a system with `N` coordinates ([`Problem::initial_data`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InitialData<const N: usize> {
+    /// Canonical momenta p0.
+    Momentum([f64; N]),
+    /// Velocities v0.
+    Velocity([f64; N]),
 }
 
 /// Which discrete Dirac structure: (+) (type-2 generating function) or (−) (type-3).
@@ -132,9 +178,13 @@ impl Differentiation {
 /// The discretization and the choice of equations.
 ///
 /// ```
-/// use ddirac::{Method, Rule, Variant};
+/// use ddirac::{Connection, Method, Rule, Variant};
 /// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
 /// assert_eq!(method.variant, Variant::Plus);
+/// // Two bodies (x = r2 − r1, g = r1) with equal masses, reduced with the centre-of-mass connection
+/// // K = −m2/(m1 + m2) · I:
+/// let k = Connection::new(&[vec![-0.5, 0.0], vec![0.0, -0.5]]).unwrap();
+/// let centre_of_mass = Method { connection: Some(k), ..method };
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Method {
@@ -144,8 +194,9 @@ pub struct Method {
     pub variant: Variant,
     /// Integrate the reduced equations on (x, w, μ) and reconstruct g, or the unreduced ones.
     pub reduced: bool,
-    /// K = h_{d,Σ}, n_g rows of n_x entries; `None` means K = 0.
-    pub connection: Option<Vec<Vec<f64>>>,
+    /// K = h_{d,Σ}, n_g rows of n_x entries (checked against the system when a run is set up);
+    /// `None` means K = 0.
+    pub connection: Option<Connection>,
     /// Newton tolerance and iteration limit.
     pub newton: NewtonOptions,
     /// Check the invariance of L_d before a reduced run.

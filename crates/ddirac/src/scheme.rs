@@ -1,6 +1,6 @@
 //! A scheme is a residual: the step equations of one integrator, in chart-local unknowns z.
 //!
-//! The generic stepper ([`crate::integrator`]) owns the predictor, the Newton solve, step statistics
+//! The generic stepper ([`crate::Stepper`]) owns the predictor, the Newton solve, step statistics
 //! and failure reporting; a scheme only says how to evaluate its residual and Jacobian, how the
 //! momenta advance, and how the solved unknowns move the configuration (reconstruction).
 

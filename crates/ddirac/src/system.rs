@@ -141,6 +141,20 @@ impl Split {
         self.group.iter().map(|&i| full[i]).collect()
     }
 
+    /// The momentum map J(q, p) = p_g of the translations of the group coordinates (paper
+    /// Lemma 2.1), one entry per group coordinate. It does not depend on q; the momenta of the
+    /// reduced equations, (w, μ) = λ̂_d(q, p), keep p_g as μ at the same positions, so it applies to
+    /// them too.
+    ///
+    /// ```
+    /// use ddirac::{Coordinate, Split};
+    /// let split = Split::new(&[Coordinate::shape("r"), Coordinate::group("phi")]);
+    /// assert_eq!(split.momentum_map(&[0.5, 1.2]).collect::<Vec<_>>(), vec![1.2]);
+    /// ```
+    pub fn momentum_map<'a>(&'a self, p: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
+        self.group.iter().map(move |&i| p[i])
+    }
+
     /// Assembles a full vector from its shape and group entries.
     pub fn join<T: Copy + Default>(&self, x: &[T], g: &[T]) -> Vec<T> {
         let mut full = vec![T::default(); self.n_x() + self.n_g()];

@@ -84,7 +84,8 @@ fn kepler_heavy_top_two_body_and_chain() {
     let two_body = TwoBody::default();
     let problem =
         Problem::new(0.01, 300, vec![0.0, 0.0, 1.0, 0.0], InitialMomentum::Velocity(vec![0.0, 0.0, 0.0, 0.8]));
-    let method = Method { reduced: true, connection: Some(two_body.centre_of_mass_connection()), ..Method::default() };
+    let method =
+        Method { reduced: true, connection: Some(two_body.centre_of_mass_connection().unwrap()), ..Method::default() };
     let d = compare("two body, centre-of-mass connection", &two_body, &problem, &method);
     assert!(d < 1e-10, "two body: {d:e}");
     let chain = PendulumChain::<12>::default();

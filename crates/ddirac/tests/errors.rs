@@ -6,7 +6,8 @@ mod common;
 use ddirac::mechanics::legendre;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};
 use ddirac::{
-    integrate, solve, Coordinate, Error, InitialMomentum, Method, NewtonOptions, OutputOptions, Problem, Rule, System,
+    integrate, solve, Connection, Coordinate, Error, InitialMomentum, Input, Method, NewtonOptions, OutputOptions,
+    Problem, Rule, System,
 };
 use num_dual::DualNum;
 
@@ -33,17 +34,17 @@ fn wrong_sizes_are_rejected() {
     let cp = ChargedParticle::default();
     let short_q = Problem { q0: vec![0.0; 3], ..cp_problem() };
     let e = run_err(&cp, &short_q, &reduced());
-    assert!(matches!(&e, Error::Size { expected: 4, found: 3, .. }), "{e:?}");
+    assert!(matches!(&e, Error::Size { what: Input::InitialConfiguration, expected: 4, found: 3 }), "{e:?}");
     assert!(e.to_string().contains("initial configuration q has 3 entries"), "{e}");
 
     let long_p = Problem { initial: InitialMomentum::Momentum(vec![0.0; 5]), ..cp_problem() };
     let e = run_err(&cp, &long_p, &Method::default());
-    assert!(matches!(&e, Error::Size { expected: 4, found: 5, .. }), "{e:?}");
+    assert!(matches!(&e, Error::Size { what: Input::InitialMomentum, expected: 4, found: 5 }), "{e:?}");
     assert!(e.to_string().contains("initial momentum p has 5 entries"), "{e}");
 
     let short_v = Problem { initial: InitialMomentum::Velocity(vec![1.0]), ..cp_problem() };
     let e = run_err(&cp, &short_v, &Method::default());
-    assert!(matches!(&e, Error::Size { expected: 4, found: 1, .. }), "{e:?}");
+    assert!(matches!(&e, Error::Size { what: Input::InitialVelocity, expected: 4, found: 1 }), "{e:?}");
     assert!(e.to_string().contains("initial velocity v"), "{e}");
 }
 
@@ -52,13 +53,43 @@ fn non_finite_initial_data_is_rejected() {
     let cp = ChargedParticle::default();
     let nan_q = Problem { q0: vec![0.0, f64::NAN, 0.0, 0.0], ..cp_problem() };
     let e = run_err(&cp, &nan_q, &reduced());
-    assert!(matches!(&e, Error::NonFinite { value, .. } if value.is_nan()), "{e:?}");
+    assert!(
+        matches!(&e, Error::NonFinite { what: Input::InitialConfiguration, entry: Some(1), value } if value.is_nan()),
+        "{e:?}"
+    );
     assert!(e.to_string().contains("entry 2 of the initial configuration q"), "{e}");
 
     let inf_p = Problem { initial: InitialMomentum::Momentum(vec![1.0, 0.0, f64::INFINITY, 1.0]), ..cp_problem() };
     let e = run_err(&cp, &inf_p, &reduced());
-    assert!(matches!(&e, Error::NonFinite { value, .. } if *value == f64::INFINITY), "{e:?}");
+    assert!(
+        matches!(&e, Error::NonFinite { what: Input::InitialMomentum, entry: Some(2), value } if *value == f64::INFINITY),
+        "{e:?}"
+    );
     assert!(e.to_string().contains("entry 3 of the initial momentum p"), "{e}");
+}
+
+/// Velocities whose Legendre transform is not finite: the error names the momentum they map to.
+#[test]
+fn velocities_with_a_non_finite_momentum_are_rejected() {
+    let problem = Problem::new(0.1, 10, vec![0.0; 4], InitialMomentum::Velocity(vec![1.0, 0.0, 1e308, 1.0]));
+    let e = run_err(&ChargedParticle { m: 10.0, b0: 1.0 }, &problem, &Method::default());
+    assert!(
+        matches!(&e, Error::NonFinite { what: Input::MomentumFromVelocity, entry: Some(2), value } if value.is_infinite()),
+        "{e:?}"
+    );
+    assert_eq!(e.to_string(), "entry 3 of the initial momentum p = ∂L/∂v(q0, v0) is not finite (inf)");
+}
+
+/// A built-in system refuses a parameter by name, in a typed field.
+#[test]
+fn parameters_are_named_in_their_errors() {
+    let build = ddirac::systems::find("charged_particle").unwrap().build;
+    let e = build(&[("m".into(), -1.0)]).err().expect("a negative mass is refused");
+    assert!(matches!(&e, Error::Invalid { what: Input::Parameter(name), .. } if name == "m"), "{e:?}");
+    assert_eq!(e.to_string(), "invalid parameter `m`: must be positive, got -1");
+    let e = build(&[("B0".into(), f64::NAN)]).err().expect("NaN is refused");
+    assert!(matches!(&e, Error::NonFinite { what: Input::Parameter(name), entry: None, .. } if name == "B0"));
+    assert_eq!(e.to_string(), "parameter `B0` is not finite (NaN)");
 }
 
 #[test]
@@ -66,38 +97,48 @@ fn bad_step_and_step_count_are_rejected() {
     let cp = ChargedParticle::default();
     for step in [0.0, -0.1, f64::NAN, f64::INFINITY] {
         let e = run_err(&cp, &Problem { step, ..cp_problem() }, &reduced());
-        assert!(matches!(&e, Error::Invalid { what, .. } if what == "step"), "step {step}: {e:?}");
+        assert!(matches!(&e, Error::Invalid { what, .. } if *what == Input::Step), "step {step}: {e:?}");
         assert!(e.to_string().contains("positive"), "{e}");
     }
     let e = run_err(&cp, &Problem { steps: 0, ..cp_problem() }, &reduced());
-    assert!(matches!(&e, Error::Invalid { what, .. } if what == "steps"), "{e:?}");
+    assert!(matches!(&e, Error::Invalid { what, .. } if *what == Input::Steps), "{e:?}");
     let e = solve(&cp, &cp_problem(), &reduced(), &OutputOptions { every: 0, wrap_angles: false }).unwrap_err();
-    assert!(matches!(&e, Error::Invalid { what, .. } if what == "output.every"), "{e:?}");
+    assert!(matches!(&e, Error::Invalid { what, .. } if *what == Input::Every), "{e:?}");
 }
 
 #[test]
 fn bad_connections_are_rejected() {
-    // The charged particle has n_g = 1, n_x = 3: K is 1 × 3.
+    // K alone: rows of equal length, finite entries.
+    let cases = [
+        (vec![vec![0.0, f64::NAN, 0.0]], "row 1 of K contains the non-finite value NaN"),
+        (vec![vec![0.0; 3], vec![0.0, 0.0, f64::NEG_INFINITY]], "row 2 of K contains the non-finite value -inf"),
+        (vec![vec![0.0; 3], vec![0.0; 2]], "row 2 of K has 2 entries, but row 1 has 3"),
+    ];
+    for (k, text) in cases {
+        let e = Connection::new(&k).unwrap_err();
+        assert!(matches!(&e, Error::Invalid { what: Input::Connection, .. }), "{k:?}: {e:?}");
+        assert!(e.to_string().contains(text), "{k:?}: `{e}` should contain `{text}`");
+    }
+    // K against the system: the charged particle has n_g = 1, n_x = 3, so K is 1 × 3.
     let cp = ChargedParticle::default();
     let cases = [
         (vec![vec![0.0, 0.0]], "row 1 of K has 2 entries"),
         (vec![vec![0.0; 3], vec![0.0; 3]], "found 2 rows"),
         (vec![], "found 0 rows"),
-        (vec![vec![0.0, f64::NAN, 0.0]], "non-finite"),
-        (vec![vec![0.0, 0.0, f64::NEG_INFINITY]], "non-finite"),
     ];
     for (k, text) in cases {
-        let method = Method { connection: Some(k.clone()), ..reduced() };
+        let method = Method { connection: Some(Connection::new(&k).unwrap()), ..reduced() };
         let e = run_err(&cp, &cp_problem(), &method);
-        assert!(matches!(&e, Error::Invalid { what, .. } if what == "connection"), "{k:?}: {e:?}");
+        assert!(matches!(&e, Error::Invalid { what: Input::Connection, .. }), "{k:?}: {e:?}");
         assert!(e.to_string().contains(text), "{k:?}: `{e}` should contain `{text}`");
     }
     // Two bodies: K must be 2 × 2.
     let tb = TwoBody::default();
     let problem = Problem::new(0.01, 10, vec![0.0, 0.0, 1.0, 0.0], InitialMomentum::Velocity(vec![0.0, 0.0, 0.0, 1.0]));
-    let method = Method { rule: Rule::Midpoint, connection: Some(vec![vec![-1.0 / 3.0, 0.0, 0.0]; 2]), ..reduced() };
+    let k = Connection::new(&[vec![-1.0 / 3.0, 0.0, 0.0], vec![-1.0 / 3.0, 0.0, 0.0]]).unwrap();
+    let method = Method { rule: Rule::Midpoint, connection: Some(k), ..reduced() };
     let e = run_err(&tb, &problem, &method);
-    assert!(matches!(&e, Error::Invalid { what, .. } if what == "connection"), "{e:?}");
+    assert!(matches!(&e, Error::Invalid { what: Input::Connection, .. }), "{e:?}");
 }
 
 /// A harmonic oscillator with a single shape coordinate: nothing to reduce.

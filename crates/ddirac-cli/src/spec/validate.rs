@@ -68,9 +68,15 @@ pub struct Spans {
 impl Spans {
     /// The span and label of the spec value a library error is about, if any.
     pub fn locate(&self, error: &ddirac::Error) -> Option<(Range<usize>, &'static str)> {
-        use ddirac::Error as E;
+        use ddirac::{Error as E, Hypothesis, Input};
         let what = match error {
-            E::Size { what, .. } | E::NonFinite { what, .. } | E::Invalid { what, .. } => what.as_str(),
+            E::Size { what, .. } | E::NonFinite { what, .. } | E::Invalid { what, .. } => what,
+            E::Undecided { hypothesis: Hypothesis::Periodicity, coordinate, .. } => {
+                return match self.angles.iter().find(|(n, _)| n == coordinate) {
+                    Some((_, span)) => Some((span.clone(), "this angle")),
+                    None => self.system.clone().map(|s| (s, "this system")),
+                }
+            }
             E::NotInvariant { .. } | E::NoSymmetry | E::Undecided { .. } => {
                 return self.reduced.clone().map(|s| (s, "reduction asked here"))
             }
@@ -80,20 +86,18 @@ impl Spans {
             }
             _ => return None,
         };
-        if let Some((_, span)) = self.parameters.iter().find(|(n, _)| what.contains(&format!("`{n}`"))) {
-            Some((span.clone(), "this parameter"))
-        } else if what.contains("configuration q") {
-            self.q.clone().map(|s| (s, "initial configuration"))
-        } else if what.contains("momentum") || what.contains("velocity") {
-            self.momentum.clone().map(|s| (s, "initial data"))
-        } else if what.contains("connection") {
-            self.connection.clone().map(|s| (s, "this connection"))
-        } else if what.contains("every") {
-            self.every.clone().map(|s| (s, "this value"))
-        } else if what.contains("step") {
-            self.time.clone().map(|s| (s, "this time grid"))
-        } else {
-            None
+        match what {
+            Input::Parameter(name) => {
+                self.parameters.iter().find(|(n, _)| n == name).map(|(_, span)| (span.clone(), "this parameter"))
+            }
+            Input::InitialConfiguration => self.q.clone().map(|s| (s, "initial configuration")),
+            Input::InitialMomentum | Input::InitialVelocity | Input::MomentumFromVelocity => {
+                self.momentum.clone().map(|s| (s, "initial data"))
+            }
+            Input::Connection => self.connection.clone().map(|s| (s, "this connection")),
+            Input::Every => self.every.clone().map(|s| (s, "this value")),
+            Input::Step | Input::Steps => self.time.clone().map(|s| (s, "this time grid")),
+            _ => None,
         }
     }
 
@@ -129,6 +133,12 @@ impl Spans {
                      L(q, v); remove `{coordinate}` from `angles` if it is not an angle on the circle"
                 ))
             }
+            ddirac::Error::Undecided { hypothesis: ddirac::Hypothesis::Periodicity, .. } => Some(
+                "L_d is not finite near the initial data, so the hypothesis could not be tested: check the initial \
+                 data and where the Lagrangian is defined; remove the coordinate from `angles` if it is not an angle \
+                 on the circle"
+                    .into(),
+            ),
             ddirac::Error::Undecided { .. } => Some(
                 "L_d is not finite near the initial data, so the hypothesis could not be tested: check the initial \
                  data and where the Lagrangian is defined; `check_invariance = false` reduces anyway, with a warning"
@@ -436,7 +446,15 @@ fn method(
     spans.tolerance = m.tolerance.as_ref().map(|t| t.span());
     spans.energy_jump = m.on_energy_jump.as_ref().map(|a| a.span());
     spans.connection = m.connection.as_ref().map(|c| c.span());
-    let connection = m.connection.as_ref().map(|k| connection(source, k, coordinates)).transpose()?;
+    let connection = match &m.connection {
+        Some(k) => {
+            let rows = connection(source, k, coordinates)?;
+            let connection = ddirac::Connection::new(&rows)
+                .map_err(|e| source.error(Some(k.span()), e.to_string(), "this connection"));
+            Some(connection?)
+        }
+        None => None,
+    };
     Ok(Method {
         rule,
         variant,

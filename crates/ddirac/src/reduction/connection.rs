@@ -14,16 +14,17 @@
 
 use nalgebra::DMatrix;
 
-use crate::Error;
+use crate::{Error, Input};
 
 /// A linear discrete principal connection, given by K = h_{d,Σ}.
 ///
 /// ```
 /// use ddirac::Connection;
-/// let k = Connection::new(&[vec![-0.5]], 1, 1).unwrap();
+/// let k = Connection::new(&[vec![-0.5]]).unwrap();
 /// // ω_d((x0, g0), (x1, g1)) = g1 − g0 − K (x1 − x0)
 /// assert_eq!(k.omega_d((&[0.0], &[0.0]), (&[2.0], &[1.0])), vec![2.0]);
 /// assert!(k.check_axioms().is_ok());
+/// assert!(Connection::new(&[vec![0.0, 1.0], vec![0.0]]).is_err());
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Connection {
@@ -36,19 +37,16 @@ impl Connection {
         Self { k: DMatrix::zeros(n_g, n_x) }
     }
 
-    /// K from its rows (n_g rows of n_x entries each).
-    pub fn new(rows: &[Vec<f64>], n_x: usize, n_g: usize) -> Result<Self, Error> {
-        let invalid = |why: String| Error::Invalid { what: "connection".into(), why };
-        if rows.len() != n_g {
-            return Err(invalid(format!(
-                "K must have one row per group coordinate ({n_g}), found {} rows",
-                rows.len()
-            )));
-        }
+    /// K from its rows, one per group coordinate with one entry per shape coordinate: the rows must
+    /// have equal lengths and finite entries. Whether the sizes fit a system is checked when a run is
+    /// set up ([`Connection::fitted`]).
+    pub fn new(rows: &[Vec<f64>]) -> Result<Self, Error> {
+        let invalid = |why: String| Error::Invalid { what: Input::Connection, why };
+        let n_x = rows.first().map_or(0, Vec::len);
         for (j, row) in rows.iter().enumerate() {
             if row.len() != n_x {
                 return Err(invalid(format!(
-                    "row {} of K has {} entries, expected one per shape coordinate ({n_x})",
+                    "row {} of K has {} entries, but row 1 has {n_x}: K has one entry per shape coordinate in every row",
                     j + 1,
                     row.len()
                 )));
@@ -57,7 +55,50 @@ impl Connection {
                 return Err(invalid(format!("row {} of K contains the non-finite value {v}", j + 1)));
             }
         }
-        Ok(Self { k: DMatrix::from_fn(n_g, n_x, |j, i| rows[j][i]) })
+        Ok(Self { k: DMatrix::from_fn(rows.len(), n_x, |j, i| rows[j][i]) })
+    }
+
+    /// This K for a system with `n_x` shape and `n_g` group coordinates: an error unless K has
+    /// `n_g` rows of `n_x` entries. K without rows fits a system without group coordinates.
+    ///
+    /// ```
+    /// use ddirac::Connection;
+    /// let k = Connection::new(&[vec![0.0, 0.0]]).unwrap();
+    /// assert!(k.fitted(2, 1).is_ok());
+    /// assert_eq!(
+    ///     k.fitted(3, 1).unwrap_err().to_string(),
+    ///     "invalid connection: row 1 of K has 2 entries, expected one per shape coordinate (3)"
+    /// );
+    /// assert_eq!(Connection::new(&[]).unwrap().fitted(3, 0).unwrap(), Connection::zero(3, 0));
+    /// ```
+    pub fn fitted(&self, n_x: usize, n_g: usize) -> Result<Self, Error> {
+        let invalid = |why: String| Error::Invalid { what: Input::Connection, why };
+        if self.n_g() != n_g {
+            return Err(invalid(format!(
+                "K must have one row per group coordinate ({n_g}), found {} rows",
+                self.n_g()
+            )));
+        }
+        if n_g == 0 {
+            return Ok(Self::zero(n_x, 0));
+        }
+        if self.n_x() != n_x {
+            return Err(invalid(format!(
+                "row 1 of K has {} entries, expected one per shape coordinate ({n_x})",
+                self.n_x()
+            )));
+        }
+        Ok(self.clone())
+    }
+
+    /// K by rows (n_g rows of n_x entries), as [`Connection::new`] takes it.
+    ///
+    /// ```
+    /// let rows = vec![vec![-0.5, 0.0], vec![0.0, -0.5]];
+    /// assert_eq!(ddirac::Connection::new(&rows).unwrap().rows(), rows);
+    /// ```
+    pub fn rows(&self) -> Vec<Vec<f64>> {
+        self.k.row_iter().map(|row| row.iter().copied().collect()).collect()
     }
 
     /// K as a matrix.
@@ -147,7 +188,7 @@ impl Connection {
             let (x0, g0, x1, g1) = (sample(s, n_x), sample(s + 1, n_g), sample(s + 2, n_x), sample(s + 3, n_g));
             let (a, b) = (sample(s + 4, n_g), sample(s + 5, n_g));
             let fail = |axiom: &str, dev: f64| Error::Invalid {
-                what: "connection".into(),
+                what: Input::Connection,
                 why: format!("axiom {axiom} of Definition 2.1 fails by {dev:.2e}"),
             };
             let dev0 = self.omega_d((&x0, &g0), (&x0, &g0)).iter().fold(0.0f64, |m, v| m.max(v.abs()));

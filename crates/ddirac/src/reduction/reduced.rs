@@ -111,6 +111,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
         StepEquations { sign, advances: std::array::from_fn(|i| !group(i)), eliminable: std::array::from_fn(group) }
     }
 
+    #[inline]
     fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {
         let mut dq: [f64; N] = (*z).into();
         for (j, &gj) in self.reduction.split.group.iter().enumerate() {
@@ -144,6 +145,7 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
     }
 
     /// p = λ̂_d⁻¹(q, w, μ).
+    #[inline]
     fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
         if self.flat {
             return *wm;

@@ -13,7 +13,7 @@
 
 use crate::Scalar;
 
-use crate::{Connection, DiscreteLagrangian, Error, Rule, Split, System};
+use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
 
 /// A discrete Lagrangian L_d read in a trivialization Q = Σ × G through a linear connection: the reduced
 /// Lagrangians l±, which the reduced schemes differentiate in the chart of each step. Their partials and
@@ -48,7 +48,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         let split = Split::new(&system.coordinates());
         if (connection.n_x(), connection.n_g()) != (split.n_x(), split.n_g()) {
             return Err(Error::Invalid {
-                what: "connection".into(),
+                what: Input::Connection,
                 why: format!(
                     "K is {}×{}, the system has {} group and {} shape coordinates",
                     connection.n_g(),
@@ -144,7 +144,7 @@ impl<'a, S> ReducedLagrangian<'a, S> {
         for &(what, found, shape) in items {
             let expected = if shape { self.split.n_x() } else { self.split.n_g() };
             if found != expected {
-                return Err(Error::Size { what: what.into(), expected, found });
+                return Err(Error::Size { what: Input::Argument(what.into()), expected, found });
             }
         }
         Ok(())

@@ -16,7 +16,7 @@ pub use kepler::Kepler;
 pub use pendulum_chain::{PendulumChain, CHAIN_LINKS};
 pub use two_body::TwoBody;
 
-use crate::{DynSystem, Erased, Error};
+use crate::{DynSystem, Erased, Error, Input};
 
 /// Named, real-valued parameters of a built-in system.
 pub trait Parameters {
@@ -31,7 +31,7 @@ fn finite(name: &str, value: f64) -> Result<f64, Error> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::NonFinite { what: format!("parameter `{name}`"), value })
+        Err(Error::NonFinite { what: Input::Parameter(name.into()), entry: None, value })
     }
 }
 
@@ -39,14 +39,14 @@ fn positive(name: &str, value: f64) -> Result<f64, Error> {
     if finite(name, value)? > 0.0 {
         Ok(value)
     } else {
-        Err(Error::Invalid { what: format!("parameter `{name}`"), why: format!("must be positive, got {value}") })
+        Err(Error::Invalid { what: Input::Parameter(name.into()), why: format!("must be positive, got {value}") })
     }
 }
 
 fn unknown_parameter(name: &str, system: &impl Parameters) -> Error {
     let known: Vec<&str> = system.parameters().into_iter().map(|(n, _)| n).collect();
     Error::Invalid {
-        what: format!("parameter `{name}`"),
+        what: Input::Parameter(name.into()),
         why: format!("unknown; known parameters: {}", known.join(", ")),
     }
 }

@@ -29,7 +29,7 @@
 
 use num_dual::DualNum;
 
-use crate::{Coordinate, DynSystem, Error, InitialMomentum, Problem, System};
+use crate::{Coordinate, DynSystem, Error, InitialMomentum, Input, Problem, System};
 
 /// A planar chain of `N` identical pendula (uniform mass and length) hanging from a fixed pivot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,7 +94,7 @@ impl<const N: usize> super::Parameters for PendulumChain<N> {
             "links" if value == N as f64 => {}
             "links" => {
                 return Err(Error::Invalid {
-                    what: format!("parameter `{name}`"),
+                    what: Input::Parameter(name.into()),
                     why: format!("PendulumChain<{N}> has {N} links, got {value}"),
                 })
             }
@@ -162,7 +162,7 @@ supported_links!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 24 32 40 50);
 fn unsupported_links(value: f64) -> Error {
     let supported: Vec<String> = CHAIN_LINKS.iter().map(|n| n.to_string()).collect();
     Error::Invalid {
-        what: "parameter `links`".into(),
+        what: Input::Parameter("links".into()),
         why: format!("{value} is not a supported number of links; supported: {}", supported.join(", ")),
     }
 }

@@ -11,7 +11,7 @@
 
 use num_dual::DualNum;
 
-use crate::{Coordinate, Error, System};
+use crate::{Connection, Coordinate, Error, System};
 
 /// Two bodies of masses `m1`, `m2` with attraction constant `k`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,15 +36,16 @@ impl TwoBody {
         Self { m1: 1.0, m2: 0.5, k: 1.0 }
     }
 
-    /// K = −m2/(m1 + m2) · I, rows for (r1x, r1y), columns for (rx, ry).
+    /// K = −m2/(m1 + m2) · I, rows for (r1x, r1y), columns for (rx, ry); an error when it is not
+    /// finite (m1 + m2 = 0).
     ///
     /// ```
-    /// let k = ddirac::systems::TwoBody::default().centre_of_mass_connection();
-    /// assert_eq!(k, vec![vec![-1.0 / 3.0, 0.0], vec![0.0, -1.0 / 3.0]]);
+    /// let k = ddirac::systems::TwoBody::default().centre_of_mass_connection().unwrap();
+    /// assert_eq!(k.rows(), vec![vec![-1.0 / 3.0, 0.0], vec![0.0, -1.0 / 3.0]]);
     /// ```
-    pub fn centre_of_mass_connection(&self) -> Vec<Vec<f64>> {
+    pub fn centre_of_mass_connection(&self) -> Result<Connection, Error> {
         let c = -self.m2 / (self.m1 + self.m2);
-        vec![vec![c, 0.0], vec![0.0, c]]
+        Connection::new(&[vec![c, 0.0], vec![0.0, c]])
     }
 }
 

@@ -2,10 +2,10 @@
 //! trajectories. Each test binary uses a subset of them.
 #![allow(dead_code)]
 
-use ddirac::{solve, Method, OutputOptions, Problem, Rule, Solution, System, Variant};
+use ddirac::{solve, Connection, Method, OutputOptions, Problem, Rule, Solution, System, Variant};
 
 /// A method with the default Newton options and the invariance check on.
-pub fn method(rule: Rule, variant: Variant, reduced: bool, connection: Option<Vec<Vec<f64>>>) -> Method {
+pub fn method(rule: Rule, variant: Variant, reduced: bool, connection: Option<Connection>) -> Method {
     Method { rule, variant, reduced, connection, ..Method::default() }
 }
 

@@ -1,0 +1,769 @@
+//! The stepper: a run one step at a time, with a state to save and to restart from.
+//!
+//! Each step k solves the chosen scheme's equations for chart-local unknowns z (increments, and γ_k
+//! for the reduced schemes) by Newton's method from a predictor (the previous steps' unknowns,
+//! extrapolated quadratically from the last three, linearly after two; on the first step h · v0
+//! from the Legendre transform), then advances the configuration and the momenta. [`Stepper`] owns
+//! the predictor, the Newton solve, the chart, the diagnostics and the failure reporting;
+//! [`crate::integrate`] and [`crate::solve`] are loops over it.
+//!
+//! Everything a step changes lives in one place (the stepper's progress), and [`Stepper::state`]
+//! copies all of it: a stepper restarted from a state continues bit for bit as the stepper it was
+//! taken from.
+
+use std::time::Instant;
+
+use nalgebra::SVector;
+
+use crate::chart::Configuration;
+use crate::diagnostics::{
+    Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Summary, Warning, WarningKind, Warnings,
+};
+use crate::energy_jump::{Jump, JumpAction, Monitor};
+use crate::integrator::OutputError;
+use crate::mechanics::dirac::LagrangeDirac;
+use crate::mechanics::legendre;
+use crate::reduction::reduced::LagrangePoincareDirac;
+use crate::reduction::reduced_lagrangian::ReducedLagrangian;
+use crate::scheme::{Scheme, StepDerivatives, StepEquations};
+use crate::{
+    newton, Connection, CoordinateKind, DiscreteLagrangian, Error, InitialMomentum, Input, Method, Problem, Split,
+    System,
+};
+
+/// What a run needs before its first step: validated initial data, the split, the connection and a
+/// first-step increment h · v0 for the predictor.
+pub(crate) struct Setup<const N: usize> {
+    pub split: Split,
+    pub q0: [f64; N],
+    pub p0: [f64; N],
+    /// h · v0 with v0 from the inverse Legendre transform (0 where it is not finite).
+    pub dq0: [f64; N],
+    pub connection: Connection,
+}
+
+impl<const N: usize> Setup<N> {
+    pub(crate) fn new<S: System<N>>(system: &S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        problem.validate(N)?;
+        let split = Split::new(&system.coordinates());
+        let sized = |v: &[f64]| -> [f64; N] { v.try_into().expect("validated size") };
+        let q0 = sized(&problem.q0);
+        let p0 = match &problem.initial {
+            InitialMomentum::Momentum(p) => sized(p),
+            InitialMomentum::Velocity(v) => {
+                let p0 = legendre::momentum(system, &q0, &sized(v));
+                if let Some((i, &value)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                    return Err(Error::NonFinite { what: Input::MomentumFromVelocity, entry: Some(i), value });
+                }
+                p0
+            }
+        };
+        let connection = match &method.connection {
+            Some(k) => k.fitted(split.n_x(), split.n_g())?,
+            None => Connection::zero(split.n_x(), split.n_g()),
+        };
+        connection.check_axioms()?;
+        let dq0 = first_increment(system, &q0, &p0, problem.step);
+        Ok(Self { split, q0, p0, dq0, connection })
+    }
+}
+
+/// h · v with v from the inverse Legendre transform at (q, p), 0 where it is not finite: the
+/// predictor of a first step.
+fn first_increment<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N], h: f64) -> [f64; N] {
+    let (v, _) = legendre::velocity(system, q, p);
+    std::array::from_fn(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
+}
+
+/// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
+///
+/// [`Stepper::new`] does what a run does before its first step: it checks the input and the
+/// hypotheses of the method ([`crate::check`]), chooses the unreduced or the reduced equations and
+/// prepares their derivatives. Then [`Stepper::step`] advances from step k to k + 1,
+/// [`Stepper::row`] reports the current state, and [`Stepper::finish`] gives the run's summary.
+/// [`Stepper::state`] saves the state of step k with everything that influences later steps (the
+/// predictor's memory, the kept Newton Jacobian, the energy watch) and the run's record so far;
+/// [`Stepper::restart`] continues from it bit for bit. [`State::new`] gives a cold state from q and p
+/// alone, for starting a prepared stepper from other initial data (an ensemble).
+///
+/// ```
+/// use ddirac::{solve, Method, OutputOptions, Rule, Stepper, systems::ChargedParticle};
+/// let (system, problem) = (ChargedParticle::default(), ChargedParticle::paper_problem(200));
+/// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
+///
+/// let mut stepper = Stepper::new(&system, &problem, &method).unwrap();
+/// for _ in 0..120 {
+///     stepper.step().unwrap();
+/// }
+/// let saved = stepper.state();
+/// while !stepper.is_finished() {
+///     stepper.step().unwrap();
+/// }
+/// let q_end = stepper.row().q;
+///
+/// // Another stepper continues from the saved state as the first one did, bit for bit ...
+/// let mut again = Stepper::new(&system, &problem, &method).unwrap();
+/// again.restart(&saved).unwrap();
+/// assert_eq!(again.k(), 120);
+/// while !again.is_finished() {
+///     again.step().unwrap();
+/// }
+/// assert_eq!(again.row().q, q_end);
+/// // ... and both end where `solve` ends.
+/// let solution = solve(&system, &problem, &method, &OutputOptions::default()).unwrap();
+/// assert_eq!(solution.q.last().unwrap().as_slice(), q_end.as_slice());
+/// // Paper, Table 1: N = 200 → 0.01664
+/// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
+/// ```
+pub struct Stepper<'a, S, const N: usize> {
+    context: Context<'a, S, N>,
+    schemes: Schemes<'a, S, N>,
+    derivative_path: DerivativePath,
+    /// The Jacobian memory of a first step: none kept, with the relative cost of the derivatives.
+    fresh_kept: newton::KeptJacobian<N>,
+    /// The warnings of the check before the first step, with which every record starts.
+    check_warnings: Vec<Warning>,
+    started: Instant,
+    progress: Progress<N>,
+}
+
+/// The scheme of a run with its step equations and derivatives: unreduced or reduced.
+enum Schemes<'a, S, const N: usize> {
+    Unreduced(Equipped<LagrangeDirac<'a, S>, N>),
+    Reduced(Equipped<LagrangePoincareDirac<'a, S>, N>),
+}
+
+struct Equipped<Sc, const N: usize> {
+    scheme: Sc,
+    equations: StepEquations<N>,
+    derivatives: StepDerivatives<N>,
+}
+
+/// `$body` with `$e` bound to the run's [`Equipped`] scheme, whichever it is.
+macro_rules! equipped {
+    ($schemes:expr, $e:ident => $body:expr) => {
+        match $schemes {
+            Schemes::Unreduced($e) => $body,
+            Schemes::Reduced($e) => $body,
+        }
+    };
+}
+
+/// What the steps and rows of a stepper read but do not change.
+struct Context<'a, S, const N: usize> {
+    system: &'a S,
+    method: Method,
+    h: f64,
+    steps: usize,
+    split: Split,
+    kinds: [CoordinateKind; N],
+    wrap_angles: bool,
+}
+
+/// Everything a step changes: the state of step k, the solver's memory and the run's record.
+#[derive(Debug, Clone)]
+struct Progress<const N: usize> {
+    k: usize,
+    config: Configuration<N>,
+    /// The scheme momenta (see [`Scheme`]).
+    momenta: [f64; N],
+    /// The canonical momenta p_k of the energy watch.
+    p_now: [f64; N],
+    predictor: Predictor<N>,
+    kept: newton::KeptJacobian<N>,
+    monitor: Monitor,
+    record: Record<N>,
+}
+
+/// What the summary reports: statistics since the record started, and the warnings.
+#[derive(Debug, Clone)]
+struct Record<const N: usize> {
+    /// The step k0 and the state (q, p) the record starts from.
+    start: (usize, [f64; N], [f64; N]),
+    /// The momentum map at the start.
+    j0: Vec<f64>,
+    max_drift: f64,
+    energy: Accumulator,
+    discrete_energy: Accumulator,
+    newton: NewtonSummary,
+    warnings: Warnings,
+}
+
+impl<const N: usize> Record<N> {
+    /// Folds the momentum map of the scheme `momenta` into the largest drift.
+    fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
+        let j = split.momentum_map(momenta);
+        self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
+    }
+}
+
+/// A state of a run at step k: the configuration, the momenta and, when it was taken from a
+/// [`Stepper`], all that the stepper needs to continue bit for bit ([`Stepper::restart`]).
+///
+/// A state taken from a stepper holds the configuration in its chart (each angle's re-centred base
+/// in (−π, π] and its full turns), the momenta of the scheme, the predictor's last unknowns and
+/// their count, the Newton Jacobian kept across steps, the energy watch and the run's record (the
+/// statistics and warnings of the steps before). A cold state ([`State::new`], [`State::cold`])
+/// holds only k, q and p: a stepper starts from it as on a first step.
+///
+/// ```
+/// use ddirac::State;
+/// let cold = State::new(0, [0.0; 4], [1.0, 0.0, 1.0, 1.0]);
+/// assert!(!cold.is_warm());
+/// assert_eq!(cold.p(), &[1.0, 0.0, 1.0, 1.0]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct State<const N: usize> {
+    k: usize,
+    q: [f64; N],
+    p: [f64; N],
+    memory: Option<Box<Memory<N>>>,
+}
+
+/// The part of a state only a stepper reads, with the method and step it belongs to.
+#[derive(Debug, Clone)]
+struct Memory<const N: usize> {
+    method: Method,
+    h: f64,
+    progress: Progress<N>,
+}
+
+impl<const N: usize> State<N> {
+    /// A cold state at step `k` from a configuration `q` (angles may be unwrapped) and canonical
+    /// momenta `p`.
+    pub fn new(k: usize, q: [f64; N], p: [f64; N]) -> Self {
+        Self { k, q, p, memory: None }
+    }
+
+    /// This state without the stepper's memory: a stepper restarted from it starts from (q, p) as
+    /// on a first step, and a new record (the summary then covers the steps from k on).
+    pub fn cold(&self) -> Self {
+        Self::new(self.k, self.q, self.p)
+    }
+
+    /// The step index k.
+    pub fn k(&self) -> usize {
+        self.k
+    }
+
+    /// The configuration q_k, angles unwrapped.
+    pub fn q(&self) -> &[f64; N] {
+        &self.q
+    }
+
+    /// The canonical momenta p_k.
+    pub fn p(&self) -> &[f64; N] {
+        &self.p
+    }
+
+    /// Whether the state holds a stepper's memory (it was taken by [`Stepper::state`]).
+    pub fn is_warm(&self) -> bool {
+        self.memory.is_some()
+    }
+}
+
+/// A row of the trajectory by value ([`Stepper::row`]); [`OwnedRow::as_row`] gives the [`Row`]
+/// that [`crate::integrate`] hands to its observer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OwnedRow<const N: usize> {
+    /// Step index k.
+    pub k: usize,
+    /// Time t_k = k h.
+    pub t: f64,
+    /// Configuration q_k (angles unwrapped unless asked otherwise).
+    pub q: [f64; N],
+    /// Canonical momenta p_k.
+    pub p: [f64; N],
+    /// The Hamiltonian H(q_k, p_k).
+    pub energy: f64,
+    /// L_d(q_k, q_{k+1}), once step k is taken (the stepper's row of step k is taken before).
+    pub discrete_energy: Option<f64>,
+    momentum_map: [f64; N],
+    n_g: usize,
+}
+
+impl<const N: usize> OwnedRow<N> {
+    /// The momentum map J(q_k, p_k) = p_g, one entry per group coordinate.
+    pub fn momentum_map(&self) -> &[f64] {
+        &self.momentum_map[..self.n_g]
+    }
+
+    /// The row as [`crate::integrate`] reports it.
+    pub fn as_row(&self) -> Row<'_> {
+        Row {
+            k: self.k,
+            t: self.t,
+            q: &self.q,
+            p: &self.p,
+            energy: self.energy,
+            discrete_energy: self.discrete_energy,
+            momentum_map: self.momentum_map(),
+        }
+    }
+}
+
+/// What a step reports: its discrete energy and how its Newton solve went.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport {
+    /// The step taken, k (the stepper is now at k + 1).
+    pub k: usize,
+    /// L_d(q_k, q_{k+1}), the paper's discrete energy of the step.
+    pub discrete_energy: f64,
+    /// Newton corrections, residual and Jacobians of the step (one correction for a closed-form step).
+    pub newton: newton::NewtonStats,
+}
+
+impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
+    /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
+    /// first step: an error for input that a run refuses, or for a hypothesis that fails
+    /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary).
+    pub fn new(system: &'a S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let setup = Setup::new(system, problem, method)?;
+        let check_warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
+        let coordinates = system.coordinates();
+        let kinds = coordinates.each_ref().map(|c| c.kind);
+        let (h, steps) = (problem.step, problem.steps);
+        let started = Instant::now();
+        let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
+        let (schemes, derivative_path, mut progress) = if method.reduced {
+            let reduction = ReducedLagrangian::new(system, method.rule, h, setup.connection.clone())?;
+            let scheme = LagrangePoincareDirac::new(reduction, method.variant);
+            let progress = Progress::cold(&scheme, start, setup.dq0, kinds, &setup.split, method, warnings);
+            let (equipped, path) = Equipped::new(scheme, method, steps, &progress)?;
+            (Schemes::Reduced(equipped), path, progress)
+        } else {
+            let scheme = LagrangeDirac { ld: DiscreteLagrangian::new(system, method.rule, h) };
+            let progress = Progress::cold(&scheme, start, setup.dq0, kinds, &setup.split, method, warnings);
+            let (equipped, path) = Equipped::new(scheme, method, steps, &progress)?;
+            (Schemes::Unreduced(equipped), path, progress)
+        };
+        let fresh_kept = match derivative_path {
+            DerivativePath::Compiled { residual, jacobian, .. } => newton::KeptJacobian::with_relative_cost(
+                newton::KeptJacobian::<N>::compiled_relative_cost(residual, jacobian),
+            ),
+            DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
+        };
+        progress.kept = fresh_kept.clone();
+        Ok(Self {
+            context: Context {
+                system,
+                method: method.clone(),
+                h,
+                steps,
+                split: setup.split,
+                kinds,
+                wrap_angles: false,
+            },
+            schemes,
+            derivative_path,
+            fresh_kept,
+            check_warnings,
+            started,
+            progress,
+        })
+    }
+
+    /// Report angles wrapped to (−π, π] (in [`Stepper::row`] and the summary's final q) instead of
+    /// continuous; the default is continuous.
+    pub fn set_wrap_angles(&mut self, wrap: bool) {
+        self.context.wrap_angles = wrap;
+    }
+
+    /// The current step index k.
+    pub fn k(&self) -> usize {
+        self.progress.k
+    }
+
+    /// The current time t_k = k h.
+    pub fn t(&self) -> f64 {
+        self.progress.k as f64 * self.context.h
+    }
+
+    /// The number of steps N of the problem.
+    pub fn steps(&self) -> usize {
+        self.context.steps
+    }
+
+    /// Whether all N steps are taken.
+    pub fn is_finished(&self) -> bool {
+        self.progress.k >= self.context.steps
+    }
+
+    /// Takes step k → k + 1: solves the step equations, checks the new state, watches the energy.
+    ///
+    /// Returns [`Error::Interrupted`] when a stop was requested ([`crate::interrupt`]) and an error
+    /// when the run is finished, Newton's method fails, the state becomes non-finite or the energy
+    /// jumps under [`JumpAction::Fail`]. A failed solve or a non-finite state leaves the stepper at
+    /// step k (only its kept Newton Jacobian is dropped; restarting from a saved state retries the
+    /// step bit for bit); an energy jump is reported once the step that shows it is taken.
+    #[inline]
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        if self.is_finished() {
+            return Err(Error::Invalid {
+                what: Input::Steps,
+                why: format!("the run has taken all its {} steps", self.context.steps),
+            });
+        }
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted { step: self.k(), t: self.t() });
+        }
+        equipped!(&self.schemes, e => self.progress.step(e, &self.context))
+    }
+
+    /// The row of the current step k: q_k, p_k, the Hamiltonian and the momentum map (the discrete
+    /// energy of step k is known once it is taken: [`StepReport::discrete_energy`]). The summary's
+    /// energy statistics are over the rows taken.
+    pub fn row(&mut self) -> OwnedRow<N> {
+        equipped!(&self.schemes, e => self.progress.row(&e.scheme, &self.context))
+    }
+
+    /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
+    /// (what [`crate::integrate`] reports), each with the discrete energy of its step. The same
+    /// steps and rows as [`Stepper::step`] and [`Stepper::row`], without choosing the scheme at each
+    /// step.
+    pub(crate) fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+    ) -> Result<(), Error> {
+        let (context, progress) = (&self.context, &mut self.progress);
+        equipped!(&self.schemes, e => {
+            let mut until_report = 0;
+            while progress.k < context.steps {
+                if crate::interrupt::requested() {
+                    return Err(Error::Interrupted { step: progress.k, t: progress.k as f64 * context.h });
+                }
+                // The row of step k carries L_d(q_k, q_{k+1}): it is taken before the step, reported
+                // after it.
+                let row = (until_report == 0).then(|| progress.row(&e.scheme, context));
+                until_report = if until_report == 0 { every - 1 } else { until_report - 1 };
+                let step = progress.step(e, context)?;
+                if let Some(mut row) = row {
+                    row.discrete_energy = Some(step.discrete_energy);
+                    observer(&row.as_row()).map_err(Error::Output)?;
+                }
+            }
+            observer(&progress.row(&e.scheme, context).as_row()).map_err(Error::Output)
+        })
+    }
+
+    /// The state of step k, with all that a stepper of the same system, method and step needs to
+    /// continue from it bit for bit.
+    pub fn state(&self) -> State<N> {
+        let progress = &self.progress;
+        let p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&progress.momenta));
+        let memory = Memory { method: self.context.method.clone(), h: self.context.h, progress: progress.clone() };
+        State { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
+    }
+
+    /// Continues from `state`: from a state taken from a stepper of the same system, method and step
+    /// exactly as that stepper would have continued (its record too, so that the summary covers the
+    /// whole run); from a cold state as on a first step from (q, p), with a new record. The
+    /// derivatives prepared by [`Stepper::new`] are kept.
+    ///
+    /// An error for a state beyond the problem's last step, a warm state from another method or
+    /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
+    /// entry.
+    pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
+        if state.k > self.context.steps {
+            let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
+            return Err(Error::Invalid { what: Input::State, why });
+        }
+        if let Some(memory) = &state.memory {
+            if memory.method != self.context.method || memory.h.to_bits() != self.context.h.to_bits() {
+                let why = "it was taken from a stepper with another method or step; restart from its cold form \
+                           (`State::cold`)";
+                return Err(Error::Invalid { what: Input::State, why: why.into() });
+            }
+            self.progress = memory.progress.clone();
+            return Ok(());
+        }
+        if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
+        }
+        let dq = first_increment(self.context.system, &state.q, &state.p, self.context.h);
+        let start = (state.k, state.q, state.p);
+        let warnings = self.check_warnings.clone();
+        let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
+        let mut progress =
+            equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, dq, kinds, split, method, warnings));
+        progress.kept = self.fresh_kept.clone();
+        self.progress = progress;
+        Ok(())
+    }
+
+    /// The summary of the run up to the current step: the energy watch's last verdict (an error
+    /// under [`JumpAction::Fail`] when the energy jumped and did not come back), final state,
+    /// statistics, Newton counts and warnings.
+    pub fn finish(self) -> Result<Summary, Error> {
+        let Progress { k, config, momenta, mut monitor, mut record, .. } = self.progress;
+        if let Some(jump) = monitor.finish() {
+            jumped(jump, self.context.method.energy_jump.action, &mut record.warnings)?;
+        }
+        let final_q = config.output(self.context.wrap_angles).to_vec();
+        let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&momenta)).to_vec();
+        let (k0, q0, p0) = record.start;
+        let reference_error =
+            self.context.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
+                let unwrapped = config.unwrapped();
+                let terms: Vec<f64> =
+                    exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+            });
+        let j_scale = record.j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        Ok(Summary {
+            coordinates: self.context.system.coordinates().iter().map(|c| c.name.clone()).collect(),
+            steps: k - k0,
+            step: self.context.h,
+            final_q,
+            final_p,
+            energy: record.energy.stats(),
+            discrete_energy: record.discrete_energy.stats(),
+            momentum_map: MomentumMapDrift {
+                max_relative_drift: (j_scale > 0.0).then(|| record.max_drift / j_scale),
+                initial: record.j0,
+                max_drift: record.max_drift,
+            },
+            newton: record.newton,
+            derivatives: self.derivative_path,
+            wall_seconds: self.started.elapsed().as_secs_f64(),
+            reference_error,
+            warnings: record.warnings.0,
+        })
+    }
+}
+
+impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
+    /// The scheme with its equations and the derivatives of its generating function, prepared at the
+    /// first step of `progress`.
+    fn new(scheme: Sc, method: &Method, steps: usize, progress: &Progress<N>) -> Result<(Self, DerivativePath), Error> {
+        let (derivatives, path) = StepDerivatives::new(
+            &scheme,
+            method.differentiation,
+            steps,
+            &scheme.base(progress.config.base()),
+            &progress.predictor.predict().into(),
+            &progress.momenta,
+        )
+        .map_err(Error::NotCompiled)?;
+        Ok((Self { equations: scheme.equations(), scheme, derivatives }, path))
+    }
+}
+
+impl<const N: usize> Progress<N> {
+    /// The row of step k; its energy goes into the record.
+    #[inline]
+    fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<'_, S, N>) -> OwnedRow<N> {
+        let p = scheme.p_from_momenta(&self.momenta);
+        let mut momentum_map = [0.0; N];
+        momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
+        let energy = legendre::hamiltonian(context.system, self.config.base(), &p);
+        self.record.energy.push(energy);
+        OwnedRow {
+            k: self.k,
+            t: self.k as f64 * context.h,
+            q: self.config.output(context.wrap_angles),
+            p,
+            energy,
+            discrete_energy: None,
+            momentum_map,
+            n_g: context.split.n_g(),
+        }
+    }
+
+    /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq`; the
+    /// kept Jacobian is to be set by the caller.
+    fn cold(
+        scheme: &impl Scheme<N>,
+        start: (usize, [f64; N], [f64; N]),
+        dq: [f64; N],
+        kinds: [CoordinateKind; N],
+        split: &Split,
+        method: &Method,
+        warnings: Vec<Warning>,
+    ) -> Self {
+        let (k, q, p) = start;
+        let momenta = scheme.momenta_from_p(&p);
+        let mut record = Record {
+            start,
+            j0: split.momentum_map(&p).collect(),
+            max_drift: 0.0,
+            energy: Accumulator::default(),
+            discrete_energy: Accumulator::default(),
+            newton: NewtonSummary::default(),
+            warnings: Warnings(warnings),
+        };
+        record.drift(split, &momenta);
+        Self {
+            k,
+            config: Configuration::new(q, kinds),
+            momenta,
+            p_now: p,
+            predictor: Predictor::new(scheme.unknowns(&dq)),
+            kept: newton::KeptJacobian::new(),
+            monitor: Monitor::new(method.energy_jump),
+            record,
+        }
+    }
+
+    /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
+    /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
+    #[inline]
+    fn step<S, Sc: Scheme<N>>(
+        &mut self,
+        e: &Equipped<Sc, N>,
+        context: &Context<'_, S, N>,
+    ) -> Result<StepReport, Error> {
+        let (method, h, split) = (&context.method, context.h, &context.split);
+        let k = self.k;
+        let t = k as f64 * h;
+        let base = e.scheme.base(self.config.base());
+        let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
+            solve_step(e, &base, &self.momenta, &self.predictor, &mut self.kept, &method.newton).map_err(|f| {
+                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason }
+            })?;
+        let dq = e.scheme.increment(&z);
+        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
+            return Err(Error::Diverged { step: k, t, what: "state" });
+        }
+        let record = &mut self.record;
+        record.discrete_energy.push(discrete_energy);
+        if fell_back {
+            let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
+            record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
+        }
+        let action = method.energy_jump.action;
+        let jump = if action != JumpAction::Ignore {
+            let p_next = e.scheme.p_from_momenta(&momenta_next);
+            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
+            self.p_now = p_next;
+            self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
+        } else {
+            None
+        };
+        record.newton.total_iterations += stats.iterations;
+        record.newton.total_jacobians += stats.jacobians;
+        record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
+        record.newton.max_residual = record.newton.max_residual.max(stats.residual);
+
+        self.config.advance(&dq);
+        self.momenta = momenta_next;
+        self.predictor.push(z);
+        self.k += 1;
+        record.drift(split, &self.momenta);
+        if let Some(jump) = jump {
+            jumped(jump, action, &mut record.warnings)?;
+        }
+        Ok(StepReport { k, discrete_energy, newton: stats })
+    }
+}
+
+/// A jump of the energy as the method asks: an error, or a warning.
+#[cold]
+fn jumped(jump: Jump, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
+    if action == JumpAction::Fail {
+        let (step, t) = jump.at;
+        return Err(Error::EnergyJump { step, t, message: jump.describe() });
+    }
+    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
+    Ok(())
+}
+
+/// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
+struct Solved<const N: usize> {
+    z: SVector<f64, N>,
+    momenta_next: [f64; N],
+    discrete_energy: f64,
+    stats: newton::NewtonStats,
+    /// Whether the closed-form step failed its test and Newton's method solved the step.
+    fell_back: bool,
+}
+
+/// Solves one step's equations for the unknowns z: by the compiled closed-form step when the run
+/// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
+/// solution if it failed the test, or from the predictor.
+#[inline]
+fn solve_step<Sc: Scheme<N>, const N: usize>(
+    e: &Equipped<Sc, N>,
+    base: &[f64; N],
+    momenta: &[f64; N],
+    predictor: &Predictor<N>,
+    kept: &mut newton::KeptJacobian<N>,
+    options: &newton::NewtonOptions,
+) -> Result<Solved<N>, newton::NewtonFailure> {
+    let Equipped { scheme, equations, derivatives } = e;
+    let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let closed_form = derivatives.linear_step().map(|l| l.solve(base, momenta));
+    if let Some(s) = closed_form {
+        if let Some(residual) = s.solves(options.threshold(scale)) {
+            let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
+            let (z, momenta_next, discrete_energy) = (s.z.into(), s.momenta_next, s.value);
+            return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
+        }
+    }
+    let mut z = match closed_form {
+        Some(s) if s.z.iter().all(|v| v.is_finite()) => s.z.into(),
+        _ => predictor.predict(),
+    };
+    let mut last = None;
+    let stats = newton::solve_with(&mut z, scale, options, kept, |z, with_jacobian| {
+        let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
+        let e = equations.evaluate(momenta, &d, mixed);
+        last = Some(e);
+        (e.residual, e.jacobian)
+    })?;
+    let last = last.expect("Newton evaluates at least once");
+    let (momenta_next, discrete_energy) = (last.momenta_next, last.discrete_energy);
+    Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: closed_form.is_some() })
+}
+
+/// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated
+/// quadratically from the last three (linearly after two, the last one after one), and a first guess
+/// before any.
+#[derive(Debug, Clone)]
+struct Predictor<const N: usize> {
+    last: [SVector<f64, N>; 3],
+    count: usize,
+}
+
+impl<const N: usize> Predictor<N> {
+    fn new(first: SVector<f64, N>) -> Self {
+        Self { last: [first; 3], count: 0 }
+    }
+
+    fn push(&mut self, z: SVector<f64, N>) {
+        self.last = [z, self.last[0], self.last[1]];
+        self.count += 1;
+    }
+
+    fn predict(&self) -> SVector<f64, N> {
+        let [z, z1, z2] = self.last;
+        match self.count {
+            0 | 1 => z,
+            2 => 2.0 * z - z1,
+            _ => 3.0 * (z - z1) + z2,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The predictor reproduces polynomials of the degree it extrapolates with: constant after one
+    /// step, linear after two, quadratic from three on.
+    #[test]
+    fn predictor_is_exact_for_polynomials_of_its_degree() {
+        let polynomial = |degree: i32, k: f64| SVector::<f64, 2>::new(k.powi(degree) - 2.0 * k, 0.5 * k.powi(degree));
+        for (count, degree) in [(1, 0), (2, 1), (3, 2), (6, 2)] {
+            let mut predictor = Predictor::new(SVector::zeros());
+            for k in 0..count {
+                let z = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, k as f64) };
+                predictor.push(z);
+            }
+            let expected = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, count as f64) };
+            let error = (predictor.predict() - expected).amax();
+            assert!(error < 1e-12 * (1.0 + expected.amax()), "{count} steps, degree {degree}: error {error:e}");
+        }
+    }
+}
