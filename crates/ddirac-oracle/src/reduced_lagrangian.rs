@@ -74,7 +74,11 @@ pub fn ld_partials<S: System<N>, const N: usize>(
 ) -> Result<(SplitVector, SplitVector), Error> {
     let full = |q: &SplitVector| -> Result<[f64; N], Error> {
         let v = q.to_full(&reduction.split)?;
-        v.as_slice().try_into().map_err(|_| Error::Size { what: Input::Argument("q".into()), expected: N, found: v.len() })
+        v.as_slice().try_into().map_err(|_| Error::Size {
+            what: Input::Argument("q".into()),
+            expected: N,
+            found: v.len(),
+        })
     };
     let d = reduction.ld.derivatives(&full(q0)?, &full(q1)?);
     Ok((
