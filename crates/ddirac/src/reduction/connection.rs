@@ -138,7 +138,7 @@ impl Connection {
     ///
     /// ```
     /// use ddirac::Connection;
-    /// let k = Connection::new(&[vec![1.0, 2.0], vec![3.0, 4.0]], 2, 2).unwrap();
+    /// let k = Connection::new(&[vec![1.0, 2.0], vec![3.0, 4.0]]).unwrap();
     /// let mut w = [0.0; 2];
     /// k.transpose_apply(&[1.0, -1.0], &mut w);
     /// assert_eq!(w, [1.0 - 3.0, 2.0 - 4.0]);
