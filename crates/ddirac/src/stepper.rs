@@ -137,6 +137,12 @@ struct Equipped<Sc, const N: usize> {
     scheme: Sc,
     equations: StepEquations<N>,
     derivatives: StepDerivatives<N>,
+    /// The scheme momenta the derivatives were prepared with: a compiled closed-form step holds the
+    /// conserved ones (μ) as constants.
+    prepared: [f64; N],
+    /// Whether the closed-form step, if there is one, serves the current state: its conserved
+    /// momenta are those it was prepared with.
+    closed_form: bool,
 }
 
 /// `$body` with `$e` bound to the run's [`Equipped`] scheme, whichever it is.
@@ -459,7 +465,9 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// Continues from `state`: from a state taken from a stepper of the same system, method and step
     /// exactly as that stepper would have continued (its record too, so that the summary covers the
     /// whole run); from a cold state as on a first step from (q, p), with a new record. The
-    /// derivatives prepared by [`Stepper::new`] are kept.
+    /// derivatives prepared by [`Stepper::new`] are kept. A compiled closed-form step holds the
+    /// conserved momenta μ of the problem as constants: from a state with another μ the steps are
+    /// solved by Newton's method on the same equations instead.
     ///
     /// An error for a state beyond the problem's last step, a warm state from another method or
     /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
@@ -476,6 +484,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 return Err(Error::Invalid { what: Input::State, why: why.into() });
             }
             self.progress = memory.progress.clone();
+            equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
             return Ok(());
         }
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
@@ -489,6 +498,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
             equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, dq, kinds, split, method, warnings));
         progress.kept = self.fresh_kept.clone();
         self.progress = progress;
+        equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
         Ok(())
     }
 
@@ -546,7 +556,14 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
             &progress.momenta,
         )
         .map_err(Error::NotCompiled)?;
-        Ok((Self { equations: scheme.equations(), scheme, derivatives }, path))
+        let (equations, prepared) = (scheme.equations(), progress.momenta);
+        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true }, path))
+    }
+
+    /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds
+    /// as constants, those that do not advance, are the same.
+    fn serves(&self, momenta: &[f64; N]) -> bool {
+        (0..N).all(|i| self.equations.advances[i] || momenta[i].to_bits() == self.prepared[i].to_bits())
     }
 }
 
@@ -691,9 +708,9 @@ fn solve_step<Sc: Scheme<N>, const N: usize>(
     kept: &mut newton::KeptJacobian<N>,
     options: &newton::NewtonOptions,
 ) -> Result<Solved<N>, newton::NewtonFailure> {
-    let Equipped { scheme, equations, derivatives } = e;
+    let Equipped { scheme, equations, derivatives, .. } = e;
     let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let closed_form = derivatives.linear_step().map(|l| l.solve(base, momenta));
+    let closed_form = derivatives.linear_step().filter(|_| e.closed_form).map(|l| l.solve(base, momenta));
     if let Some(s) = closed_form {
         if let Some(residual) = s.solves(options.threshold(scale)) {
             let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };

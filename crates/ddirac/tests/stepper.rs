@@ -155,6 +155,27 @@ fn charged_particle_closed_form_step_restarts() {
     }
     assert_reproduces_solve("charged particle, closed form", &system, &problem, &method);
     assert_restarts("charged particle, closed form", &system, &problem, &method, 150);
+
+    // The closed-form step holds the problem's charge μ = p_θ = 1 as a constant. A cold state with
+    // the charge 2 (twice the cyclotron frequency) is stepped by Newton's method instead, and agrees
+    // with a run prepared for that charge.
+    let p0 = [1.0, 0.0, 1.0, 2.0];
+    let mut stepper = Stepper::new(&system, &problem, &method).unwrap();
+    stepper.restart(&State::new(0, [0.0; 4], p0)).unwrap();
+    let rows = rows_to_end(&mut stepper);
+    let charge_two = Problem::with_momentum(problem.step, problem.steps, [0.0; 4], p0);
+    let expected = solve(&system, &charge_two, &method, &OutputOptions::default()).unwrap();
+    let difference = rows
+        .iter()
+        .zip(&expected.q)
+        .flat_map(|(row, q)| row.q.iter().zip(q).map(|(a, b)| (a - b).abs()))
+        .fold(0.0f64, f64::max);
+    eprintln!("charged particle, charge 2 after a restart: differs from its own run by {difference:.2e}");
+    assert!(difference < 1e-9, "{difference:e}");
+    let summary = stepper.finish().unwrap();
+    assert!(summary.newton.total_iterations > problem.steps, "Newton's method solved the steps: {:?}", summary.newton);
+    // The exact helix of charge 2 (radius 1/2): the same order of error as the paper's charge 1.
+    assert!(summary.reference_error.unwrap() < 0.05, "{:?}", summary.reference_error);
 }
 
 #[test]
