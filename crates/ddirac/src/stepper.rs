@@ -63,15 +63,15 @@ impl<const N: usize> Setup<N> {
             None => Connection::zero(split.n_x(), split.n_g()),
         };
         connection.check_axioms()?;
-        let dq0 = first_increment(system, &q0, &p0, problem.step);
+        let (v0, _) = legendre::velocity(system, &q0, &p0);
+        let dq0 = first_increment(&v0, problem.step);
         Ok(Self { split, q0, p0, dq0, connection })
     }
 }
 
-/// h · v with v from the inverse Legendre transform at (q, p), 0 where it is not finite: the
-/// predictor of a first step.
-fn first_increment<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N], h: f64) -> [f64; N] {
-    let (v, _) = legendre::velocity(system, q, p);
+/// h · v, 0 where v is not finite: the predictor of a first step, with v from the inverse Legendre
+/// transform.
+fn first_increment<const N: usize>(v: &[f64; N], h: f64) -> [f64; N] {
     std::array::from_fn(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
 }
 
@@ -471,7 +471,9 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     ///
     /// An error for a state beyond the problem's last step, a warm state from another method or
     /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
-    /// entry.
+    /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
+    /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
+    /// are not tested again for a cold state.
     pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
         if state.k > self.context.steps {
             let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
@@ -490,7 +492,16 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
         }
-        let dq = first_increment(self.context.system, &state.q, &state.p, self.context.h);
+        let (system, (q, p)) = (self.context.system, (&state.q, &state.p));
+        let (v, mismatch) = legendre::velocity(system, q, p);
+        let scale = p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if mismatch > crate::CONSTRAINT_TOLERANCE * (1.0 + scale) {
+            let rank = legendre::rank(system, q, &v);
+            if rank < N {
+                return Err(Error::OffPrimaryConstraint { rank, coordinates: N, mismatch });
+            }
+        }
+        let dq = first_increment(&v, self.context.h);
         let start = (state.k, state.q, state.p);
         let warnings = self.check_warnings.clone();
         let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);

@@ -6,6 +6,7 @@
 //! closed-form step.
 
 use ddirac::expression::ExpressionSpec;
+use ddirac::num_dual::DualNum;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, PendulumChain};
 use ddirac::{
     solve, Coordinate, Differentiation, DynState, DynSystem, Erased, Error, Input, Method, OutputOptions, OwnedRow,
@@ -257,12 +258,33 @@ fn restarts_that_cannot_continue_are_refused() {
     assert!(matches!(e, Error::NonFinite { what: Input::State, entry: Some(5), .. }), "{e:?}");
     assert_eq!(e.to_string(), "entry 6 of the state (q, p) is not finite (NaN)");
 
+    // A degenerate Lagrangian: a cold state must lie on the primary constraint p = ∂L/∂v.
+    let problem = Problem::with_momentum(0.01, 10, [0.5, 0.0], [0.0, 0.5]);
+    let mut oscillator = Stepper::new(&FirstOrder, &problem, &Method::default()).unwrap();
+    oscillator.restart(&State::new(3, [0.2, 0.1], [0.0, 0.2])).unwrap();
+    let e = oscillator.restart(&State::new(3, [0.2, 0.1], [1.0, 0.2])).unwrap_err();
+    assert!(matches!(e, Error::OffPrimaryConstraint { rank: 0, coordinates: 2, .. }), "{e:?}");
+
     // A finished run takes no more steps.
     while !stepper.is_finished() {
         stepper.step().unwrap();
     }
     let e = stepper.step().unwrap_err();
     assert!(matches!(e, Error::Invalid { what: Input::Steps, .. }), "{e:?}");
+}
+
+/// L = x ẏ − ½ (x² + y²): linear in the velocities, so p = ∂L/∂v = (0, x) whatever v (the harmonic
+/// oscillator in first-order form).
+struct FirstOrder;
+
+impl System<2> for FirstOrder {
+    fn coordinates(&self) -> [Coordinate; 2] {
+        [Coordinate::shape("x"), Coordinate::shape("y")]
+    }
+
+    fn lagrangian<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D; 2], v: &[D; 2]) -> D {
+        q[0] * v[1] - (q[0] * q[0] + q[1] * q[1]) * 0.5
+    }
 }
 
 /// The type-erased stepper of a text Lagrangian: the same rows as its `integrate`, a bit-for-bit
