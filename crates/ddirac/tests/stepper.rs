@@ -6,6 +6,7 @@
 //! closed-form step.
 
 use ddirac::expression::ExpressionSpec;
+use ddirac::num_dual::DualNum;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, PendulumChain};
 use ddirac::{
     solve, Coordinate, Differentiation, DynState, DynSystem, Erased, Error, Input, Method, OutputOptions, OwnedRow,
@@ -155,6 +156,27 @@ fn charged_particle_closed_form_step_restarts() {
     }
     assert_reproduces_solve("charged particle, closed form", &system, &problem, &method);
     assert_restarts("charged particle, closed form", &system, &problem, &method, 150);
+
+    // The closed-form step holds the problem's charge μ = p_θ = 1 as a constant. A cold state with
+    // the charge 2 (twice the cyclotron frequency) is stepped by Newton's method instead, and agrees
+    // with a run prepared for that charge.
+    let p0 = [1.0, 0.0, 1.0, 2.0];
+    let mut stepper = Stepper::new(&system, &problem, &method).unwrap();
+    stepper.restart(&State::new(0, [0.0; 4], p0)).unwrap();
+    let rows = rows_to_end(&mut stepper);
+    let charge_two = Problem::with_momentum(problem.step, problem.steps, [0.0; 4], p0);
+    let expected = solve(&system, &charge_two, &method, &OutputOptions::default()).unwrap();
+    let difference = rows
+        .iter()
+        .zip(&expected.q)
+        .flat_map(|(row, q)| row.q.iter().zip(q).map(|(a, b)| (a - b).abs()))
+        .fold(0.0f64, f64::max);
+    eprintln!("charged particle, charge 2 after a restart: differs from its own run by {difference:.2e}");
+    assert!(difference < 1e-9, "{difference:e}");
+    let summary = stepper.finish().unwrap();
+    assert!(summary.newton.total_iterations > problem.steps, "Newton's method solved the steps: {:?}", summary.newton);
+    // The exact helix of charge 2 (radius 1/2): the same order of error as the paper's charge 1.
+    assert!(summary.reference_error.unwrap() < 0.05, "{:?}", summary.reference_error);
 }
 
 #[test]
@@ -236,12 +258,33 @@ fn restarts_that_cannot_continue_are_refused() {
     assert!(matches!(e, Error::NonFinite { what: Input::State, entry: Some(5), .. }), "{e:?}");
     assert_eq!(e.to_string(), "entry 6 of the state (q, p) is not finite (NaN)");
 
+    // A degenerate Lagrangian: a cold state must lie on the primary constraint p = ∂L/∂v.
+    let problem = Problem::with_momentum(0.01, 10, [0.5, 0.0], [0.0, 0.5]);
+    let mut oscillator = Stepper::new(&FirstOrder, &problem, &Method::default()).unwrap();
+    oscillator.restart(&State::new(3, [0.2, 0.1], [0.0, 0.2])).unwrap();
+    let e = oscillator.restart(&State::new(3, [0.2, 0.1], [1.0, 0.2])).unwrap_err();
+    assert!(matches!(e, Error::OffPrimaryConstraint { rank: 0, coordinates: 2, .. }), "{e:?}");
+
     // A finished run takes no more steps.
     while !stepper.is_finished() {
         stepper.step().unwrap();
     }
     let e = stepper.step().unwrap_err();
     assert!(matches!(e, Error::Invalid { what: Input::Steps, .. }), "{e:?}");
+}
+
+/// L = x ẏ − ½ (x² + y²): linear in the velocities, so p = ∂L/∂v = (0, x) whatever v (the harmonic
+/// oscillator in first-order form).
+struct FirstOrder;
+
+impl System<2> for FirstOrder {
+    fn coordinates(&self) -> [Coordinate; 2] {
+        [Coordinate::shape("x"), Coordinate::shape("y")]
+    }
+
+    fn lagrangian<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D; 2], v: &[D; 2]) -> D {
+        q[0] * v[1] - (q[0] * q[0] + q[1] * q[1]) * 0.5
+    }
 }
 
 /// The type-erased stepper of a text Lagrangian: the same rows as its `integrate`, a bit-for-bit

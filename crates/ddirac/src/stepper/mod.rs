@@ -11,15 +11,12 @@
 //! copies all of it: a stepper restarted from a state continues bit for bit as the stepper it was
 //! taken from.
 
+mod progress;
+mod state;
+
 use std::time::Instant;
 
-use nalgebra::SVector;
-
-use crate::chart::Configuration;
-use crate::diagnostics::{
-    Accumulator, DerivativePath, MomentumMapDrift, NewtonSummary, Row, Summary, Warning, WarningKind, Warnings,
-};
-use crate::energy_jump::{Jump, JumpAction, Monitor};
+use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning};
 use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
@@ -30,6 +27,10 @@ use crate::{
     newton, Connection, CoordinateKind, DiscreteLagrangian, Error, InitialMomentum, Input, Method, Problem, Split,
     System,
 };
+
+use progress::{jumped, Progress};
+use state::Memory;
+pub use state::{OwnedRow, State, StepReport};
 
 /// What a run needs before its first step: validated initial data, the split, the connection and a
 /// first-step increment h · v0 for the predictor.
@@ -63,15 +64,15 @@ impl<const N: usize> Setup<N> {
             None => Connection::zero(split.n_x(), split.n_g()),
         };
         connection.check_axioms()?;
-        let dq0 = first_increment(system, &q0, &p0, problem.step);
+        let (v0, _) = legendre::velocity(system, &q0, &p0);
+        let dq0 = first_increment(&v0, problem.step);
         Ok(Self { split, q0, p0, dq0, connection })
     }
 }
 
-/// h · v with v from the inverse Legendre transform at (q, p), 0 where it is not finite: the
-/// predictor of a first step.
-fn first_increment<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N], h: f64) -> [f64; N] {
-    let (v, _) = legendre::velocity(system, q, p);
+/// h · v, 0 where v is not finite: the predictor of a first step, with v from the inverse Legendre
+/// transform.
+fn first_increment<const N: usize>(v: &[f64; N], h: f64) -> [f64; N] {
     std::array::from_fn(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
 }
 
@@ -137,6 +138,12 @@ struct Equipped<Sc, const N: usize> {
     scheme: Sc,
     equations: StepEquations<N>,
     derivatives: StepDerivatives<N>,
+    /// The scheme momenta the derivatives were prepared with: a compiled closed-form step holds the
+    /// conserved ones (μ) as constants.
+    prepared: [f64; N],
+    /// Whether the closed-form step, if there is one, serves the current state: its conserved
+    /// momenta are those it was prepared with.
+    closed_form: bool,
 }
 
 /// `$body` with `$e` bound to the run's [`Equipped`] scheme, whichever it is.
@@ -158,159 +165,6 @@ struct Context<'a, S, const N: usize> {
     split: Split,
     kinds: [CoordinateKind; N],
     wrap_angles: bool,
-}
-
-/// Everything a step changes: the state of step k, the solver's memory and the run's record.
-#[derive(Debug, Clone)]
-struct Progress<const N: usize> {
-    k: usize,
-    config: Configuration<N>,
-    /// The scheme momenta (see [`Scheme`]).
-    momenta: [f64; N],
-    /// The canonical momenta p_k of the energy watch.
-    p_now: [f64; N],
-    predictor: Predictor<N>,
-    kept: newton::KeptJacobian<N>,
-    monitor: Monitor,
-    record: Record<N>,
-}
-
-/// What the summary reports: statistics since the record started, and the warnings.
-#[derive(Debug, Clone)]
-struct Record<const N: usize> {
-    /// The step k0 and the state (q, p) the record starts from.
-    start: (usize, [f64; N], [f64; N]),
-    /// The momentum map at the start.
-    j0: Vec<f64>,
-    max_drift: f64,
-    energy: Accumulator,
-    discrete_energy: Accumulator,
-    newton: NewtonSummary,
-    warnings: Warnings,
-}
-
-impl<const N: usize> Record<N> {
-    /// Folds the momentum map of the scheme `momenta` into the largest drift.
-    fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
-        let j = split.momentum_map(momenta);
-        self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
-    }
-}
-
-/// A state of a run at step k: the configuration, the momenta and, when it was taken from a
-/// [`Stepper`], all that the stepper needs to continue bit for bit ([`Stepper::restart`]).
-///
-/// A state taken from a stepper holds the configuration in its chart (each angle's re-centred base
-/// in (−π, π] and its full turns), the momenta of the scheme, the predictor's last unknowns and
-/// their count, the Newton Jacobian kept across steps, the energy watch and the run's record (the
-/// statistics and warnings of the steps before). A cold state ([`State::new`], [`State::cold`])
-/// holds only k, q and p: a stepper starts from it as on a first step.
-///
-/// ```
-/// use ddirac::State;
-/// let cold = State::new(0, [0.0; 4], [1.0, 0.0, 1.0, 1.0]);
-/// assert!(!cold.is_warm());
-/// assert_eq!(cold.p(), &[1.0, 0.0, 1.0, 1.0]);
-/// ```
-#[derive(Debug, Clone)]
-pub struct State<const N: usize> {
-    k: usize,
-    q: [f64; N],
-    p: [f64; N],
-    memory: Option<Box<Memory<N>>>,
-}
-
-/// The part of a state only a stepper reads, with the method and step it belongs to.
-#[derive(Debug, Clone)]
-struct Memory<const N: usize> {
-    method: Method,
-    h: f64,
-    progress: Progress<N>,
-}
-
-impl<const N: usize> State<N> {
-    /// A cold state at step `k` from a configuration `q` (angles may be unwrapped) and canonical
-    /// momenta `p`.
-    pub fn new(k: usize, q: [f64; N], p: [f64; N]) -> Self {
-        Self { k, q, p, memory: None }
-    }
-
-    /// This state without the stepper's memory: a stepper restarted from it starts from (q, p) as
-    /// on a first step, and a new record (the summary then covers the steps from k on).
-    pub fn cold(&self) -> Self {
-        Self::new(self.k, self.q, self.p)
-    }
-
-    /// The step index k.
-    pub fn k(&self) -> usize {
-        self.k
-    }
-
-    /// The configuration q_k, angles unwrapped.
-    pub fn q(&self) -> &[f64; N] {
-        &self.q
-    }
-
-    /// The canonical momenta p_k.
-    pub fn p(&self) -> &[f64; N] {
-        &self.p
-    }
-
-    /// Whether the state holds a stepper's memory (it was taken by [`Stepper::state`]).
-    pub fn is_warm(&self) -> bool {
-        self.memory.is_some()
-    }
-}
-
-/// A row of the trajectory by value ([`Stepper::row`]); [`OwnedRow::as_row`] gives the [`Row`]
-/// that [`crate::integrate`] hands to its observer.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct OwnedRow<const N: usize> {
-    /// Step index k.
-    pub k: usize,
-    /// Time t_k = k h.
-    pub t: f64,
-    /// Configuration q_k (angles unwrapped unless asked otherwise).
-    pub q: [f64; N],
-    /// Canonical momenta p_k.
-    pub p: [f64; N],
-    /// The Hamiltonian H(q_k, p_k).
-    pub energy: f64,
-    /// L_d(q_k, q_{k+1}), once step k is taken (the stepper's row of step k is taken before).
-    pub discrete_energy: Option<f64>,
-    momentum_map: [f64; N],
-    n_g: usize,
-}
-
-impl<const N: usize> OwnedRow<N> {
-    /// The momentum map J(q_k, p_k) = p_g, one entry per group coordinate.
-    pub fn momentum_map(&self) -> &[f64] {
-        &self.momentum_map[..self.n_g]
-    }
-
-    /// The row as [`crate::integrate`] reports it.
-    pub fn as_row(&self) -> Row<'_> {
-        Row {
-            k: self.k,
-            t: self.t,
-            q: &self.q,
-            p: &self.p,
-            energy: self.energy,
-            discrete_energy: self.discrete_energy,
-            momentum_map: self.momentum_map(),
-        }
-    }
-}
-
-/// What a step reports: its discrete energy and how its Newton solve went.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepReport {
-    /// The step taken, k (the stepper is now at k + 1).
-    pub k: usize,
-    /// L_d(q_k, q_{k+1}), the paper's discrete energy of the step.
-    pub discrete_energy: f64,
-    /// Newton corrections, residual and Jacobians of the step (one correction for a closed-form step).
-    pub newton: newton::NewtonStats,
 }
 
 impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
@@ -393,9 +247,9 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     ///
     /// Returns [`Error::Interrupted`] when a stop was requested ([`crate::interrupt`]) and an error
     /// when the run is finished, Newton's method fails, the state becomes non-finite or the energy
-    /// jumps under [`JumpAction::Fail`]. A failed solve or a non-finite state leaves the stepper at
-    /// step k (only its kept Newton Jacobian is dropped; restarting from a saved state retries the
-    /// step bit for bit); an energy jump is reported once the step that shows it is taken.
+    /// jumps under [`crate::JumpAction::Fail`]. A failed solve or a non-finite state leaves the
+    /// stepper at step k (only its kept Newton Jacobian is dropped; restarting from a saved state
+    /// retries the step bit for bit); an energy jump is reported once the step that shows it is taken.
     #[inline]
     pub fn step(&mut self) -> Result<StepReport, Error> {
         if self.is_finished() {
@@ -459,11 +313,15 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// Continues from `state`: from a state taken from a stepper of the same system, method and step
     /// exactly as that stepper would have continued (its record too, so that the summary covers the
     /// whole run); from a cold state as on a first step from (q, p), with a new record. The
-    /// derivatives prepared by [`Stepper::new`] are kept.
+    /// derivatives prepared by [`Stepper::new`] are kept. A compiled closed-form step holds the
+    /// conserved momenta μ of the problem as constants: from a state with another μ the steps are
+    /// solved by Newton's method on the same equations instead.
     ///
     /// An error for a state beyond the problem's last step, a warm state from another method or
     /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
-    /// entry.
+    /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
+    /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
+    /// are not tested again for a cold state.
     pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
         if state.k > self.context.steps {
             let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
@@ -476,12 +334,22 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 return Err(Error::Invalid { what: Input::State, why: why.into() });
             }
             self.progress = memory.progress.clone();
+            equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
             return Ok(());
         }
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
         }
-        let dq = first_increment(self.context.system, &state.q, &state.p, self.context.h);
+        let (system, (q, p)) = (self.context.system, (&state.q, &state.p));
+        let (v, mismatch) = legendre::velocity(system, q, p);
+        let scale = p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if mismatch > crate::CONSTRAINT_TOLERANCE * (1.0 + scale) {
+            let rank = legendre::rank(system, q, &v);
+            if rank < N {
+                return Err(Error::OffPrimaryConstraint { rank, coordinates: N, mismatch });
+            }
+        }
+        let dq = first_increment(&v, self.context.h);
         let start = (state.k, state.q, state.p);
         let warnings = self.check_warnings.clone();
         let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
@@ -489,11 +357,12 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
             equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, dq, kinds, split, method, warnings));
         progress.kept = self.fresh_kept.clone();
         self.progress = progress;
+        equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
         Ok(())
     }
 
     /// The summary of the run up to the current step: the energy watch's last verdict (an error
-    /// under [`JumpAction::Fail`] when the energy jumped and did not come back), final state,
+    /// under [`crate::JumpAction::Fail`] when the energy jumped and did not come back), final state,
     /// statistics, Newton counts and warnings.
     pub fn finish(self) -> Result<Summary, Error> {
         let Progress { k, config, momenta, mut monitor, mut record, .. } = self.progress;
@@ -546,224 +415,13 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
             &progress.momenta,
         )
         .map_err(Error::NotCompiled)?;
-        Ok((Self { equations: scheme.equations(), scheme, derivatives }, path))
-    }
-}
-
-impl<const N: usize> Progress<N> {
-    /// The row of step k; its energy goes into the record.
-    #[inline]
-    fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<'_, S, N>) -> OwnedRow<N> {
-        let p = scheme.p_from_momenta(&self.momenta);
-        let mut momentum_map = [0.0; N];
-        momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
-        let energy = legendre::hamiltonian(context.system, self.config.base(), &p);
-        self.record.energy.push(energy);
-        OwnedRow {
-            k: self.k,
-            t: self.k as f64 * context.h,
-            q: self.config.output(context.wrap_angles),
-            p,
-            energy,
-            discrete_energy: None,
-            momentum_map,
-            n_g: context.split.n_g(),
-        }
+        let (equations, prepared) = (scheme.equations(), progress.momenta);
+        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true }, path))
     }
 
-    /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq`; the
-    /// kept Jacobian is to be set by the caller.
-    fn cold(
-        scheme: &impl Scheme<N>,
-        start: (usize, [f64; N], [f64; N]),
-        dq: [f64; N],
-        kinds: [CoordinateKind; N],
-        split: &Split,
-        method: &Method,
-        warnings: Vec<Warning>,
-    ) -> Self {
-        let (k, q, p) = start;
-        let momenta = scheme.momenta_from_p(&p);
-        let mut record = Record {
-            start,
-            j0: split.momentum_map(&p).collect(),
-            max_drift: 0.0,
-            energy: Accumulator::default(),
-            discrete_energy: Accumulator::default(),
-            newton: NewtonSummary::default(),
-            warnings: Warnings(warnings),
-        };
-        record.drift(split, &momenta);
-        Self {
-            k,
-            config: Configuration::new(q, kinds),
-            momenta,
-            p_now: p,
-            predictor: Predictor::new(scheme.unknowns(&dq)),
-            kept: newton::KeptJacobian::new(),
-            monitor: Monitor::new(method.energy_jump),
-            record,
-        }
-    }
-
-    /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
-    /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
-    #[inline]
-    fn step<S, Sc: Scheme<N>>(
-        &mut self,
-        e: &Equipped<Sc, N>,
-        context: &Context<'_, S, N>,
-    ) -> Result<StepReport, Error> {
-        let (method, h, split) = (&context.method, context.h, &context.split);
-        let k = self.k;
-        let t = k as f64 * h;
-        let base = e.scheme.base(self.config.base());
-        let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
-            solve_step(e, &base, &self.momenta, &self.predictor, &mut self.kept, &method.newton).map_err(|f| {
-                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason }
-            })?;
-        let dq = e.scheme.increment(&z);
-        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
-            return Err(Error::Diverged { step: k, t, what: "state" });
-        }
-        let record = &mut self.record;
-        record.discrete_energy.push(discrete_energy);
-        if fell_back {
-            let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
-            record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
-        }
-        let action = method.energy_jump.action;
-        let jump = if action != JumpAction::Ignore {
-            let p_next = e.scheme.p_from_momenta(&momenta_next);
-            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
-            self.p_now = p_next;
-            self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
-        } else {
-            None
-        };
-        record.newton.total_iterations += stats.iterations;
-        record.newton.total_jacobians += stats.jacobians;
-        record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
-        record.newton.max_residual = record.newton.max_residual.max(stats.residual);
-
-        self.config.advance(&dq);
-        self.momenta = momenta_next;
-        self.predictor.push(z);
-        self.k += 1;
-        record.drift(split, &self.momenta);
-        if let Some(jump) = jump {
-            jumped(jump, action, &mut record.warnings)?;
-        }
-        Ok(StepReport { k, discrete_energy, newton: stats })
-    }
-}
-
-/// A jump of the energy as the method asks: an error, or a warning.
-#[cold]
-fn jumped(jump: Jump, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
-    if action == JumpAction::Fail {
-        let (step, t) = jump.at;
-        return Err(Error::EnergyJump { step, t, message: jump.describe() });
-    }
-    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
-    Ok(())
-}
-
-/// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
-struct Solved<const N: usize> {
-    z: SVector<f64, N>,
-    momenta_next: [f64; N],
-    discrete_energy: f64,
-    stats: newton::NewtonStats,
-    /// Whether the closed-form step failed its test and Newton's method solved the step.
-    fell_back: bool,
-}
-
-/// Solves one step's equations for the unknowns z: by the compiled closed-form step when the run
-/// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
-/// solution if it failed the test, or from the predictor.
-#[inline]
-fn solve_step<Sc: Scheme<N>, const N: usize>(
-    e: &Equipped<Sc, N>,
-    base: &[f64; N],
-    momenta: &[f64; N],
-    predictor: &Predictor<N>,
-    kept: &mut newton::KeptJacobian<N>,
-    options: &newton::NewtonOptions,
-) -> Result<Solved<N>, newton::NewtonFailure> {
-    let Equipped { scheme, equations, derivatives } = e;
-    let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let closed_form = derivatives.linear_step().map(|l| l.solve(base, momenta));
-    if let Some(s) = closed_form {
-        if let Some(residual) = s.solves(options.threshold(scale)) {
-            let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
-            let (z, momenta_next, discrete_energy) = (s.z.into(), s.momenta_next, s.value);
-            return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
-        }
-    }
-    let mut z = match closed_form {
-        Some(s) if s.z.iter().all(|v| v.is_finite()) => s.z.into(),
-        _ => predictor.predict(),
-    };
-    let mut last = None;
-    let stats = newton::solve_with(&mut z, scale, options, kept, |z, with_jacobian| {
-        let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
-        let e = equations.evaluate(momenta, &d, mixed);
-        last = Some(e);
-        (e.residual, e.jacobian)
-    })?;
-    let last = last.expect("Newton evaluates at least once");
-    let (momenta_next, discrete_energy) = (last.momenta_next, last.discrete_energy);
-    Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: closed_form.is_some() })
-}
-
-/// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated
-/// quadratically from the last three (linearly after two, the last one after one), and a first guess
-/// before any.
-#[derive(Debug, Clone)]
-struct Predictor<const N: usize> {
-    last: [SVector<f64, N>; 3],
-    count: usize,
-}
-
-impl<const N: usize> Predictor<N> {
-    fn new(first: SVector<f64, N>) -> Self {
-        Self { last: [first; 3], count: 0 }
-    }
-
-    fn push(&mut self, z: SVector<f64, N>) {
-        self.last = [z, self.last[0], self.last[1]];
-        self.count += 1;
-    }
-
-    fn predict(&self) -> SVector<f64, N> {
-        let [z, z1, z2] = self.last;
-        match self.count {
-            0 | 1 => z,
-            2 => 2.0 * z - z1,
-            _ => 3.0 * (z - z1) + z2,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The predictor reproduces polynomials of the degree it extrapolates with: constant after one
-    /// step, linear after two, quadratic from three on.
-    #[test]
-    fn predictor_is_exact_for_polynomials_of_its_degree() {
-        let polynomial = |degree: i32, k: f64| SVector::<f64, 2>::new(k.powi(degree) - 2.0 * k, 0.5 * k.powi(degree));
-        for (count, degree) in [(1, 0), (2, 1), (3, 2), (6, 2)] {
-            let mut predictor = Predictor::new(SVector::zeros());
-            for k in 0..count {
-                let z = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, k as f64) };
-                predictor.push(z);
-            }
-            let expected = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, count as f64) };
-            let error = (predictor.predict() - expected).amax();
-            assert!(error < 1e-12 * (1.0 + expected.amax()), "{count} steps, degree {degree}: error {error:e}");
-        }
+    /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds
+    /// as constants, those that do not advance, are the same.
+    fn serves(&self, momenta: &[f64; N]) -> bool {
+        (0..N).all(|i| self.equations.advances[i] || momenta[i].to_bits() == self.prepared[i].to_bits())
     }
 }

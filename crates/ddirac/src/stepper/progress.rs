@@ -1,0 +1,268 @@
+//! The arithmetic of a step and what it changes: the state of step k, the predictor, the kept
+//! Newton Jacobian, the energy watch and the run's record ([`Progress`]); a step solved in closed form
+//! or by Newton's method ([`solve_step`]).
+
+use nalgebra::SVector;
+
+use super::{Context, Equipped, OwnedRow, StepReport};
+use crate::chart::Configuration;
+use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
+use crate::energy_jump::{Jump, JumpAction, Monitor};
+use crate::mechanics::legendre;
+use crate::scheme::Scheme;
+use crate::{newton, CoordinateKind, Error, Method, Split, System};
+
+/// Everything a step changes: the state of step k, the solver's memory and the run's record.
+#[derive(Debug, Clone)]
+pub(super) struct Progress<const N: usize> {
+    pub(super) k: usize,
+    pub(super) config: Configuration<N>,
+    /// The scheme momenta (see [`Scheme`]).
+    pub(super) momenta: [f64; N],
+    /// The canonical momenta p_k of the energy watch.
+    pub(super) p_now: [f64; N],
+    pub(super) predictor: Predictor<N>,
+    pub(super) kept: newton::KeptJacobian<N>,
+    pub(super) monitor: Monitor,
+    pub(super) record: Record<N>,
+}
+
+/// What the summary reports: statistics since the record started, and the warnings.
+#[derive(Debug, Clone)]
+pub(super) struct Record<const N: usize> {
+    /// The step k0 and the state (q, p) the record starts from.
+    pub(super) start: (usize, [f64; N], [f64; N]),
+    /// The momentum map at the start.
+    pub(super) j0: Vec<f64>,
+    pub(super) max_drift: f64,
+    pub(super) energy: Accumulator,
+    pub(super) discrete_energy: Accumulator,
+    pub(super) newton: NewtonSummary,
+    pub(super) warnings: Warnings,
+}
+
+impl<const N: usize> Record<N> {
+    /// Folds the momentum map of the scheme `momenta` into the largest drift.
+    fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
+        let j = split.momentum_map(momenta);
+        self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
+    }
+}
+
+impl<const N: usize> Progress<N> {
+    /// The row of step k; its energy goes into the record.
+    #[inline]
+    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<'_, S, N>) -> OwnedRow<N> {
+        let p = scheme.p_from_momenta(&self.momenta);
+        let mut momentum_map = [0.0; N];
+        momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
+        let energy = legendre::hamiltonian(context.system, self.config.base(), &p);
+        self.record.energy.push(energy);
+        OwnedRow {
+            k: self.k,
+            t: self.k as f64 * context.h,
+            q: self.config.output(context.wrap_angles),
+            p,
+            energy,
+            discrete_energy: None,
+            momentum_map,
+            n_g: context.split.n_g(),
+        }
+    }
+
+    /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq`; the
+    /// kept Jacobian is to be set by the caller.
+    pub(super) fn cold(
+        scheme: &impl Scheme<N>,
+        start: (usize, [f64; N], [f64; N]),
+        dq: [f64; N],
+        kinds: [CoordinateKind; N],
+        split: &Split,
+        method: &Method,
+        warnings: Vec<Warning>,
+    ) -> Self {
+        let (k, q, p) = start;
+        let momenta = scheme.momenta_from_p(&p);
+        let mut record = Record {
+            start,
+            j0: split.momentum_map(&p).collect(),
+            max_drift: 0.0,
+            energy: Accumulator::default(),
+            discrete_energy: Accumulator::default(),
+            newton: NewtonSummary::default(),
+            warnings: Warnings(warnings),
+        };
+        record.drift(split, &momenta);
+        Self {
+            k,
+            config: Configuration::new(q, kinds),
+            momenta,
+            p_now: p,
+            predictor: Predictor::new(scheme.unknowns(&dq)),
+            kept: newton::KeptJacobian::new(),
+            monitor: Monitor::new(method.energy_jump),
+            record,
+        }
+    }
+
+    /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
+    /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
+    #[inline]
+    pub(super) fn step<S, Sc: Scheme<N>>(
+        &mut self,
+        e: &Equipped<Sc, N>,
+        context: &Context<'_, S, N>,
+    ) -> Result<StepReport, Error> {
+        let (method, h, split) = (&context.method, context.h, &context.split);
+        let k = self.k;
+        let t = k as f64 * h;
+        let base = e.scheme.base(self.config.base());
+        let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
+            solve_step(e, &base, &self.momenta, &self.predictor, &mut self.kept, &method.newton).map_err(|f| {
+                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason }
+            })?;
+        let dq = e.scheme.increment(&z);
+        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
+            return Err(Error::Diverged { step: k, t, what: "state" });
+        }
+        let record = &mut self.record;
+        record.discrete_energy.push(discrete_energy);
+        if fell_back {
+            let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
+            record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
+        }
+        let action = method.energy_jump.action;
+        let jump = if action != JumpAction::Ignore {
+            let p_next = e.scheme.p_from_momenta(&momenta_next);
+            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
+            self.p_now = p_next;
+            self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
+        } else {
+            None
+        };
+        record.newton.total_iterations += stats.iterations;
+        record.newton.total_jacobians += stats.jacobians;
+        record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
+        record.newton.max_residual = record.newton.max_residual.max(stats.residual);
+
+        self.config.advance(&dq);
+        self.momenta = momenta_next;
+        self.predictor.push(z);
+        self.k += 1;
+        record.drift(split, &self.momenta);
+        if let Some(jump) = jump {
+            jumped(jump, action, &mut record.warnings)?;
+        }
+        Ok(StepReport { k, discrete_energy, newton: stats })
+    }
+}
+
+/// A jump of the energy as the method asks: an error, or a warning.
+#[cold]
+pub(super) fn jumped(jump: Jump, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
+    if action == JumpAction::Fail {
+        let (step, t) = jump.at;
+        return Err(Error::EnergyJump { step, t, message: jump.describe() });
+    }
+    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
+    Ok(())
+}
+
+/// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
+struct Solved<const N: usize> {
+    z: SVector<f64, N>,
+    momenta_next: [f64; N],
+    discrete_energy: f64,
+    stats: newton::NewtonStats,
+    /// Whether the closed-form step failed its test and Newton's method solved the step.
+    fell_back: bool,
+}
+
+/// Solves one step's equations for the unknowns z: by the compiled closed-form step when the run
+/// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
+/// solution if it failed the test, or from the predictor.
+#[inline]
+fn solve_step<Sc: Scheme<N>, const N: usize>(
+    e: &Equipped<Sc, N>,
+    base: &[f64; N],
+    momenta: &[f64; N],
+    predictor: &Predictor<N>,
+    kept: &mut newton::KeptJacobian<N>,
+    options: &newton::NewtonOptions,
+) -> Result<Solved<N>, newton::NewtonFailure> {
+    let Equipped { scheme, equations, derivatives, .. } = e;
+    let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let closed_form = derivatives.linear_step().filter(|_| e.closed_form).map(|l| l.solve(base, momenta));
+    if let Some(s) = closed_form {
+        if let Some(residual) = s.solves(options.threshold(scale)) {
+            let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
+            let (z, momenta_next, discrete_energy) = (s.z.into(), s.momenta_next, s.value);
+            return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
+        }
+    }
+    let mut z = match closed_form {
+        Some(s) if s.z.iter().all(|v| v.is_finite()) => s.z.into(),
+        _ => predictor.predict(),
+    };
+    let mut last = None;
+    let stats = newton::solve_with(&mut z, scale, options, kept, |z, with_jacobian| {
+        let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
+        let e = equations.evaluate(momenta, &d, mixed);
+        last = Some(e);
+        (e.residual, e.jacobian)
+    })?;
+    let last = last.expect("Newton evaluates at least once");
+    let (momenta_next, discrete_energy) = (last.momenta_next, last.discrete_energy);
+    Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: closed_form.is_some() })
+}
+
+/// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated
+/// quadratically from the last three (linearly after two, the last one after one), and a first guess
+/// before any.
+#[derive(Debug, Clone)]
+pub(super) struct Predictor<const N: usize> {
+    last: [SVector<f64, N>; 3],
+    count: usize,
+}
+
+impl<const N: usize> Predictor<N> {
+    fn new(first: SVector<f64, N>) -> Self {
+        Self { last: [first; 3], count: 0 }
+    }
+
+    fn push(&mut self, z: SVector<f64, N>) {
+        self.last = [z, self.last[0], self.last[1]];
+        self.count += 1;
+    }
+
+    pub(super) fn predict(&self) -> SVector<f64, N> {
+        let [z, z1, z2] = self.last;
+        match self.count {
+            0 | 1 => z,
+            2 => 2.0 * z - z1,
+            _ => 3.0 * (z - z1) + z2,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The predictor reproduces polynomials of the degree it extrapolates with: constant after one
+    /// step, linear after two, quadratic from three on.
+    #[test]
+    fn predictor_is_exact_for_polynomials_of_its_degree() {
+        let polynomial = |degree: i32, k: f64| SVector::<f64, 2>::new(k.powi(degree) - 2.0 * k, 0.5 * k.powi(degree));
+        for (count, degree) in [(1, 0), (2, 1), (3, 2), (6, 2)] {
+            let mut predictor = Predictor::new(SVector::zeros());
+            for k in 0..count {
+                let z = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, k as f64) };
+                predictor.push(z);
+            }
+            let expected = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, count as f64) };
+            let error = (predictor.predict() - expected).amax();
+            assert!(error < 1e-12 * (1.0 + expected.amax()), "{count} steps, degree {degree}: error {error:e}");
+        }
+    }
+}

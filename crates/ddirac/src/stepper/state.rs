@@ -1,0 +1,126 @@
+//! What a stepper hands out and takes back: the [`State`] of a step, the [`OwnedRow`] of the
+//! trajectory and the [`StepReport`] of a step.
+
+use super::progress::Progress;
+use crate::diagnostics::Row;
+use crate::{newton, Method};
+
+/// A state of a run at step k: the configuration, the momenta and, when it was taken from a
+/// [`Stepper`], all that the stepper needs to continue bit for bit ([`Stepper::restart`]).
+///
+/// A state taken from a stepper holds the configuration in its chart (each angle's re-centred base
+/// in (−π, π] and its full turns), the momenta of the scheme, the predictor's last unknowns and
+/// their count, the Newton Jacobian kept across steps, the energy watch and the run's record (the
+/// statistics and warnings of the steps before). A cold state ([`State::new`], [`State::cold`])
+/// holds only k, q and p: a stepper starts from it as on a first step.
+///
+/// ```
+/// use ddirac::State;
+/// let cold = State::new(0, [0.0; 4], [1.0, 0.0, 1.0, 1.0]);
+/// assert!(!cold.is_warm());
+/// assert_eq!(cold.p(), &[1.0, 0.0, 1.0, 1.0]);
+/// ```
+///
+/// [`Stepper`]: crate::Stepper
+/// [`Stepper::restart`]: crate::Stepper::restart
+#[derive(Debug, Clone)]
+pub struct State<const N: usize> {
+    pub(super) k: usize,
+    pub(super) q: [f64; N],
+    pub(super) p: [f64; N],
+    pub(super) memory: Option<Box<Memory<N>>>,
+}
+
+/// The part of a state only a stepper reads, with the method and step it belongs to.
+#[derive(Debug, Clone)]
+pub(super) struct Memory<const N: usize> {
+    pub(super) method: Method,
+    pub(super) h: f64,
+    pub(super) progress: Progress<N>,
+}
+
+impl<const N: usize> State<N> {
+    /// A cold state at step `k` from a configuration `q` (angles may be unwrapped) and canonical
+    /// momenta `p`.
+    pub fn new(k: usize, q: [f64; N], p: [f64; N]) -> Self {
+        Self { k, q, p, memory: None }
+    }
+
+    /// This state without the stepper's memory: a stepper restarted from it starts from (q, p) as
+    /// on a first step, and a new record (the summary then covers the steps from k on).
+    pub fn cold(&self) -> Self {
+        Self::new(self.k, self.q, self.p)
+    }
+
+    /// The step index k.
+    pub fn k(&self) -> usize {
+        self.k
+    }
+
+    /// The configuration q_k, angles unwrapped.
+    pub fn q(&self) -> &[f64; N] {
+        &self.q
+    }
+
+    /// The canonical momenta p_k.
+    pub fn p(&self) -> &[f64; N] {
+        &self.p
+    }
+
+    /// Whether the state holds a stepper's memory (it was taken by
+    /// [`Stepper::state`](crate::Stepper::state)).
+    pub fn is_warm(&self) -> bool {
+        self.memory.is_some()
+    }
+}
+
+/// A row of the trajectory by value ([`crate::Stepper::row`]); [`OwnedRow::as_row`] gives the
+/// [`Row`] that [`crate::integrate`] hands to its observer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OwnedRow<const N: usize> {
+    /// Step index k.
+    pub k: usize,
+    /// Time t_k = k h.
+    pub t: f64,
+    /// Configuration q_k (angles unwrapped unless asked otherwise).
+    pub q: [f64; N],
+    /// Canonical momenta p_k.
+    pub p: [f64; N],
+    /// The Hamiltonian H(q_k, p_k).
+    pub energy: f64,
+    /// L_d(q_k, q_{k+1}), once step k is taken (the stepper's row of step k is taken before).
+    pub discrete_energy: Option<f64>,
+    pub(super) momentum_map: [f64; N],
+    pub(super) n_g: usize,
+}
+
+impl<const N: usize> OwnedRow<N> {
+    /// The momentum map J(q_k, p_k) = p_g, one entry per group coordinate.
+    pub fn momentum_map(&self) -> &[f64] {
+        &self.momentum_map[..self.n_g]
+    }
+
+    /// The row as [`crate::integrate`] reports it.
+    pub fn as_row(&self) -> Row<'_> {
+        Row {
+            k: self.k,
+            t: self.t,
+            q: &self.q,
+            p: &self.p,
+            energy: self.energy,
+            discrete_energy: self.discrete_energy,
+            momentum_map: self.momentum_map(),
+        }
+    }
+}
+
+/// What a step reports: its discrete energy and how its Newton solve went.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport {
+    /// The step taken, k (the stepper is now at k + 1).
+    pub k: usize,
+    /// L_d(q_k, q_{k+1}), the paper's discrete energy of the step.
+    pub discrete_energy: f64,
+    /// Newton corrections, residual and Jacobians of the step (one correction for a closed-form step).
+    pub newton: newton::NewtonStats,
+}
