@@ -6,7 +6,7 @@ use crate::compiled::{Interpreter, Program};
 /// A compiled expression: the straight-line [`Program`] of the compiled IR (one output, the scope's
 /// variables as inputs, in order) and its [`Interpreter`], which evaluates it generically over the
 /// scalar (f64 or any num-dual number, so that automatic differentiation gives every derivative).
-/// The same program compiles to native code ([`crate::compiled::NativeProgram`]).
+/// The same program compiles to native code (`compiled::NativeProgram`, with the `jit` feature).
 ///
 /// ```
 /// use ddirac::expression::Scope;

@@ -54,11 +54,11 @@ mod tests {
     use num_dual::Dual64;
 
     use super::FUNCTIONS;
-    use crate::compiled::{pair_programs, NativeProgram, Traced};
+    use crate::compiled::{pair_programs, CompiledPair, Traced};
     use crate::expression::Scope;
 
     /// Every function gives the same value and first derivatives through the interpreter on dual
-    /// numbers and through native code compiled from one trace (at x < y, x > 0), also on the other
+    /// numbers and through the compiled programs of one trace (native code with the `jit` feature) (at x < y, x > 0), also on the other
     /// side of the kinks of `abs`, `min` and `max`.
     #[test]
     fn every_function_agrees_on_both_back_ends() {
@@ -71,8 +71,7 @@ mod tests {
             let f = |base: &[Traced; 2], a: &[Traced; 2], _: &[Traced; 2]| compiled.eval_with(|i| base[i] + a[i]);
             let programs = pair_programs(f, &[0.3, 0.7], &[0.0; 2]).unwrap_or_else(|e| panic!("{source}: {e}"));
             assert!(programs.guards.is_empty(), "{source}");
-            let native = NativeProgram::compile(&programs.first).unwrap();
-            let mut out = [0.0; 5];
+            let native = CompiledPair::<2>::from_programs(&programs).unwrap();
             let mut checked = 0;
             for (x, y) in points {
                 let dual = |dx, dy| compiled.eval(&[Dual64::new(x, dx), Dual64::new(y, dy)]);
@@ -81,8 +80,9 @@ mod tests {
                 if expected.iter().any(|v| !v.is_finite()) {
                     continue;
                 }
-                native.call(&[x, y, 0.0, 0.0], &mut out);
-                for (k, (&c, &d)) in out[..3].iter().zip(&expected).enumerate() {
+                let (first, _) = native.first_or_mixed(&[x, y], &[0.0; 2], false).unwrap();
+                let out = [first.value, first.da[0], first.da[1]];
+                for (k, (&c, &d)) in out.iter().zip(&expected).enumerate() {
                     let what = ["value", "∂/∂x", "∂/∂y"][k];
                     assert!(
                         (c - d).abs() <= 1e-14 * d.abs().max(1.0),
