@@ -14,10 +14,8 @@ use crate::{DerivativePath, Differentiation};
 /// One evaluation of a scheme's step equations at a trial point z.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Evaluation<const N: usize> {
-    /// The residual r(z).
+    /// The residual r(z); its Jacobian ∂r/∂z is the mixed block ∂²f/∂a∂b itself.
     pub residual: SVector<f64, N>,
-    /// Its Jacobian ∂r/∂z, when it was asked for.
-    pub jacobian: Option<SMatrix<f64, N, N>>,
     /// L_d(q_k, q_{k+1}) at the trial point (the paper's discrete energy).
     pub discrete_energy: f64,
     /// The scheme momenta at k + 1 if z is accepted.
@@ -45,18 +43,11 @@ pub(crate) struct StepEquations<const N: usize> {
 }
 
 impl<const N: usize> StepEquations<N> {
-    /// Residual, by-products and the Jacobian, if `mixed` is given, from the generating function's
-    /// derivatives `d` and mixed block `mixed` at the trial unknowns.
+    /// Residual and by-products from the generating function's derivatives `d` at the trial unknowns.
     #[inline]
-    pub fn evaluate(
-        &self,
-        momenta: &[f64; N],
-        d: &FirstDerivatives<N>,
-        mixed: Option<SMatrix<f64, N, N>>,
-    ) -> Evaluation<N> {
+    pub fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<N>) -> Evaluation<N> {
         Evaluation {
             residual: SVector::from_fn(|i, _| d.da[i] + self.sign[i] * momenta[i]),
-            jacobian: mixed,
             discrete_energy: d.value,
             momenta_next: self.advance(momenta, &d.db.into()),
         }
@@ -225,7 +216,7 @@ fn check_linear<const N: usize>(
 ) -> Result<(), CompileError> {
     let solution = linear.solve(base, momenta);
     let (dual, _) = ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &solution.z, false);
-    let evaluation = equations.evaluate(momenta, &dual, None);
+    let evaluation = equations.evaluate(momenta, &dual);
     let scale = momenta.iter().chain(dual.da.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
     let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;
     let next = evaluation.momenta_next;
