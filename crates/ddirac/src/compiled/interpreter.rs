@@ -356,8 +356,8 @@ impl Interpreter {
             match step {
                 Step::Load { dst, input } => r[dst as usize] = load(input as usize),
                 Step::Const { dst, value } => r[dst as usize] = D::from(value),
-                Step::Unary { op, dst, a } => r[dst as usize] = unary(op, r[a as usize]),
-                Step::Binary { op, dst, a, b } => r[dst as usize] = binary(op, r[a as usize], r[b as usize]),
+                Step::Unary { op, dst, a } => r[dst as usize] = op.apply(r[a as usize]),
+                Step::Binary { op, dst, a, b } => r[dst as usize] = op.apply(r[a as usize], r[b as usize]),
                 Step::Scalar { op, dst, a, c } => r[dst as usize] = op.apply(r[a as usize], c),
                 Step::Update { op, dst, b } => {
                     let b = r[b as usize];
@@ -386,64 +386,6 @@ impl Interpreter {
         match self.output {
             Output::Const(c) => D::from(c),
             Output::Register(register) => r[register as usize],
-        }
-    }
-}
-
-/// [`Unary::apply`] on a scalar.
-#[inline(always)]
-fn unary<D: crate::Scalar>(op: Unary, x: D) -> D {
-    match op {
-        Unary::Neg => -x,
-        Unary::Recip => x.recip(),
-        Unary::Sqrt => x.sqrt(),
-        Unary::Cbrt => x.cbrt(),
-        Unary::Abs => x.abs(),
-        Unary::Signum => {
-            if x == D::from(0.0) {
-                D::from(0.0)
-            } else {
-                x.signum()
-            }
-        }
-        Unary::Exp => x.exp(),
-        Unary::ExpM1 => x.exp_m1(),
-        Unary::Ln => x.ln(),
-        Unary::Ln1p => x.ln_1p(),
-        Unary::Sin => x.sin(),
-        Unary::Cos => x.cos(),
-        Unary::Tan => x.tan(),
-        Unary::Asin => x.asin(),
-        Unary::Acos => x.acos(),
-        Unary::Atan => x.atan(),
-        Unary::Sinh => x.sinh(),
-        Unary::Cosh => x.cosh(),
-        Unary::Tanh => x.tanh(),
-        Unary::Asinh => x.asinh(),
-        Unary::Acosh => x.acosh(),
-        Unary::Atanh => x.atanh(),
-    }
-}
-
-/// [`Binary::apply`] on scalars; xʸ with a variable exponent is exp(y ln x) on dual numbers.
-#[inline(always)]
-fn binary<D: crate::Scalar>(op: Binary, x: D, y: D) -> D {
-    match op {
-        Binary::Add => x + y,
-        Binary::Sub => x - y,
-        Binary::Mul => x * y,
-        Binary::Div => x / y,
-        Binary::Pow => x.powd(y),
-        Binary::Atan2 => x.atan2(y),
-        Binary::Min => x.min_of(y),
-        Binary::Max => x.max_of(y),
-        Binary::Less => D::from(if x < y { 1.0 } else { 0.0 }),
-        Binary::Gate => {
-            if x != D::from(0.0) {
-                y
-            } else {
-                D::from(0.0)
-            }
         }
     }
 }

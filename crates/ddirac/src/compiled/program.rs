@@ -55,9 +55,10 @@ pub enum Unary {
 }
 
 impl Unary {
-    /// The operation on one number.
-    #[inline]
-    pub fn apply(self, x: f64) -> f64 {
+    /// The operation on one number of any [`crate::Scalar`] type: f64 for constant folding and the
+    /// native code's calls, dual numbers and traces for the interpreter.
+    #[inline(always)]
+    pub fn apply<D: crate::Scalar>(self, x: D) -> D {
         match self {
             Unary::Neg => -x,
             Unary::Recip => x.recip(),
@@ -65,8 +66,8 @@ impl Unary {
             Unary::Cbrt => x.cbrt(),
             Unary::Abs => x.abs(),
             Unary::Signum => {
-                if x == 0.0 {
-                    0.0
+                if x == D::from(0.0) {
+                    D::from(0.0)
                 } else {
                     x.signum()
                 }
@@ -120,42 +121,25 @@ pub enum Binary {
 }
 
 impl Binary {
-    /// The operation on two numbers.
-    #[inline]
-    pub fn apply(self, x: f64, y: f64) -> f64 {
+    /// The operation on two numbers of any [`crate::Scalar`] type; xʸ with a variable exponent is
+    /// exp(y ln x) on dual numbers.
+    #[inline(always)]
+    pub fn apply<D: crate::Scalar>(self, x: D, y: D) -> D {
         match self {
             Binary::Add => x + y,
             Binary::Sub => x - y,
             Binary::Mul => x * y,
             Binary::Div => x / y,
-            Binary::Pow => x.powf(y),
+            Binary::Pow => x.powd(y),
             Binary::Atan2 => x.atan2(y),
-            Binary::Min => {
-                if y < x {
-                    y
-                } else {
-                    x
-                }
-            }
-            Binary::Max => {
-                if y > x {
-                    y
-                } else {
-                    x
-                }
-            }
-            Binary::Less => {
-                if x < y {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
+            Binary::Min => x.min_of(y),
+            Binary::Max => x.max_of(y),
+            Binary::Less => D::from(if x < y { 1.0 } else { 0.0 }),
             Binary::Gate => {
-                if x != 0.0 {
+                if x != D::from(0.0) {
                     y
                 } else {
-                    0.0
+                    D::from(0.0)
                 }
             }
         }
