@@ -129,7 +129,31 @@ impl Connection {
 
     /// K x.
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
-        (0..self.n_g()).map(|j| (0..self.n_x()).map(|i| self.k[(j, i)] * x[i]).sum()).collect()
+        (0..self.n_g()).map(|j| self.row_apply(j, |i| x[i]).unwrap_or(0.0)).collect()
+    }
+
+    /// Entry j of K x for a shape vector x given entry by entry (`x(i)` for shape coordinate i), on
+    /// any scalar: the one place K acts on shape vectors (K x, h_d^0 = K (x1 − x0) in the reduced
+    /// Lagrangians, the group increments of reconstruction). Zero entries of K are skipped, so a
+    /// traced program has no terms for them; `None` when row j of K is zero.
+    ///
+    /// ```
+    /// use ddirac::Connection;
+    /// let k = Connection::new(&[vec![0.0, 2.0], vec![0.0, 0.0]]).unwrap();
+    /// assert_eq!(k.row_apply(0, |i| [5.0, 3.0][i]), Some(6.0));
+    /// assert_eq!(k.row_apply(1, |i| [5.0, 3.0][i]), None);
+    /// ```
+    #[inline]
+    pub fn row_apply<D: crate::Scalar>(&self, j: usize, x: impl Fn(usize) -> D) -> Option<D> {
+        let mut acc: Option<D> = None;
+        for i in 0..self.n_x() {
+            let kji = self.k[(j, i)];
+            if kji != 0.0 {
+                let term = x(i) * kji;
+                acc = Some(acc.map_or(term, |s| s + term));
+            }
+        }
+        acc
     }
 
     /// h*_{d,Σ}(μ) = Kᵀ μ ∈ Σ*, the pull-back of μ ∈ 𝔤* by h_{d,Σ}, written into `out`: μ has one entry

@@ -72,17 +72,13 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
         }
     }
 
+    /// Row j of K (x1 − x0) from a full increment (its shape entries).
     fn k_dx(&self, j: usize, dx_full: &[f64]) -> f64 {
         if self.flat {
             return 0.0;
         }
-        self.reduction
-            .split
-            .shape
-            .iter()
-            .enumerate()
-            .map(|(i, &si)| self.reduction.connection.entry(j, i) * dx_full[si])
-            .sum()
+        let shape = &self.reduction.split.shape;
+        self.reduction.connection.row_apply(j, |i| dx_full[shape[i]]).unwrap_or(0.0)
     }
 }
 

@@ -121,15 +121,8 @@ impl<'a, S> ReducedLagrangian<'a, S> {
     /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks; `None` when row j of K
     /// is zero.
     fn k_row<D: Scalar, const N: usize>(&self, j: usize, u: &[D; N], v: &[D; N]) -> Option<D> {
-        let mut acc: Option<D> = None;
-        for (i, &si) in self.split.shape.iter().enumerate() {
-            let kji = self.connection.entry(j, i);
-            if kji != 0.0 {
-                let term = (u[si] - v[si]) * kji;
-                acc = Some(acc.map_or(term, |s| s + term));
-            }
-        }
-        acc
+        let shape = &self.split.shape;
+        self.connection.row_apply(j, |i| u[shape[i]] - v[shape[i]])
     }
 
     /// Packs a shape vector and a group vector at the coordinates' positions (missing entries `zero`).
