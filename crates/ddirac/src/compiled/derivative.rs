@@ -27,7 +27,9 @@
 //! indicator s = [y < x] (for max [x < y], `Binary::Less`, whose own derivative is 0) and ∂/∂x is
 //! 1 − s. An adjoint or tangent is *gated* by the indicator (`Binary::Gate`: v where s ≠ 0, else 0)
 //! rather than multiplied by it, so that an infinite or NaN derivative of the operand not picked
-//! does not turn 0 · ∞ into NaN; a gated value has the derivative of the gate's value operand.
+//! does not turn 0 · ∞ into NaN; a gated value has the derivative of the gate's value operand, and a
+//! gated adjoint or tangent keeps its gate outside the factors it meets later (∂ min(a, √b)/∂b at
+//! b = 0 is 0 where a is picked, in reverse mode as in forward mode).
 
 use super::graph::{Graph, Node};
 use super::program::{Binary, Instruction, Program, Unary};
@@ -207,8 +209,15 @@ enum Partial {
 }
 
 impl Partial {
-    /// v · ∂u/∂x.
+    /// v · ∂u/∂x. A gated v stays gated: the gate goes outside the factor, so that the factor of a
+    /// branch not taken (∂√x = ∞ at 0) meets the gated-off 0 as 0 rather than as 0 · ∞ = NaN.
     fn scale(self, g: &mut Graph, v: Node) -> Node {
+        if let (Partial::Times(_) | Partial::Over(_), Instruction::Binary(Binary::Gate, indicator, inner)) =
+            (self, g.instruction(v))
+        {
+            let scaled = self.scale(g, inner);
+            return g.binary(Binary::Gate, indicator, scaled);
+        }
         match self {
             Partial::Times(d) => g.mul(v, d),
             Partial::Over(d) => g.div(v, d),
