@@ -146,17 +146,26 @@ pub enum WarningKind {
     EnergyJump,
     /// The closed-form step failed its residual test and the step was solved by Newton's method.
     NewtonFallback,
+    /// An angle advanced by more than [`crate::MAX_ANGLE_STEP`] in one step, where the Legendre map is
+    /// not near-singular: the step does not resolve the motion.
+    UnderResolved,
+    /// An angle advanced by more than [`crate::MAX_ANGLE_STEP`] in one step where the Legendre map
+    /// ∂²L/∂v² has become near-singular: the coordinates are singular there (a pole of spherical
+    /// coordinates), and the trajectory near it cannot be trusted.
+    SingularChart,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
-    /// `newton_fallback`.
+    /// `newton_fallback`, `under_resolved`, `singular_chart`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
             WarningKind::InvarianceUndecided => "invariance_undecided",
             WarningKind::EnergyJump => "energy_jump",
             WarningKind::NewtonFallback => "newton_fallback",
+            WarningKind::UnderResolved => "under_resolved",
+            WarningKind::SingularChart => "singular_chart",
         }
     }
 }

@@ -37,7 +37,7 @@ pub enum Error {
     /// Newton's method failed on a step.
     #[error(
         "step {step} (t = {}): Newton's method failed after {iterations} iteration(s): {reason} \
-         (residual {residual:.3e}); {}", Time(*t), reason.hint()
+         (residual {residual:.3e}); {}", Time(*t), cause.as_deref().unwrap_or(reason.hint())
     )]
     Newton {
         /// Index k of the step q_k → q_{k+1}.
@@ -50,6 +50,9 @@ pub enum Error {
         residual: f64,
         /// Why it stopped.
         reason: FailureReason,
+        /// What the run saw there that explains the failure, when it saw something (the chart watch:
+        /// a near-singular Legendre map); it replaces the reason's generic hint.
+        cause: Option<String>,
     },
     /// The state became NaN or infinite.
     #[error("step {step} (t = {}): the {what} became non-finite", Time(*t))]

@@ -61,5 +61,5 @@ pub use num_dual;
 pub use problem::{Differentiation, InitialData, InitialMomentum, Method, OutputOptions, Problem, Variant};
 pub use reduction::connection::Connection;
 pub use scalar::{RuntimeInput, Scalar};
-pub use stepper::{OwnedRow, State, StepReport, Stepper};
+pub use stepper::{OwnedRow, State, StepReport, Stepper, LEGENDRE_DROP, MAX_ANGLE_STEP};
 pub use system::{Coordinate, CoordinateKind, Role, Split, System};

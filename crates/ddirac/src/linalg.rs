@@ -88,6 +88,20 @@ impl<const N: usize> Factorization<N> {
         Some(Self { lu, row_of, col_of, rank })
     }
 
+    /// How near to singular the factorized matrix is: its smallest pivot over its largest (0 when the
+    /// rank is below N), and the column of `a` whose pivot that is. Full pivoting orders the pivots by
+    /// size, so the ratio estimates the reciprocal condition number within a factor of a few.
+    pub(crate) fn smallest_pivot(&self) -> (f64, usize) {
+        if N == 0 {
+            return (1.0, 0);
+        }
+        if self.rank < N {
+            return (0.0, self.col_of[self.rank]);
+        }
+        let (first, last) = (self.lu[0][0].abs(), self.lu[N - 1][N - 1].abs());
+        (last / first, self.col_of[N - 1])
+    }
+
     /// A solution of `a x = b` (unknowns beyond the rank set to 0).
     #[allow(clippy::needless_range_loop)]
     pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {

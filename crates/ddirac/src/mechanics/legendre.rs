@@ -53,6 +53,31 @@ pub fn is_regular<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f
     rank(system, q, v) == N
 }
 
+/// How near to singular the Legendre map is at (q, v): the smallest pivot of ∂²L/∂v² (full pivoting)
+/// over its largest, 0 where it is singular, and the coordinate of the smallest pivot, along whose
+/// velocity the momentum stops determining the motion. The spherical pendulum's ∂²L/∂v² =
+/// m l² diag(1, sin²θ) gives sin²θ and the azimuth: its chart is singular at the poles θ = 0, π.
+///
+/// ```
+/// use ddirac::{Coordinate, System, mechanics::legendre};
+/// use ddirac::num_dual::DualNum;
+/// struct Sphere;
+/// impl System<2> for Sphere {
+///     fn coordinates(&self) -> [Coordinate; 2] {
+///         [Coordinate::shape("theta").angle(), Coordinate::group("phi").angle()]
+///     }
+///     fn lagrangian<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D; 2], v: &[D; 2]) -> D {
+///         (v[0] * v[0] + q[0].sin().powi(2) * v[1] * v[1]) * 0.5
+///     }
+/// }
+/// let (ratio, along) = legendre::conditioning(&Sphere, &[0.01, 0.0], &[0.0, 0.0]);
+/// assert!((ratio - 0.01f64.sin().powi(2)).abs() < 1e-15 && along == 1);
+/// ```
+pub fn conditioning<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> (f64, usize) {
+    let hess = velocity_hessian(system, q, v).2;
+    Factorization::new(hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
+}
+
 fn velocity_hessian<S: System<N>, const N: usize>(
     system: &S,
     q: &[f64; N],

@@ -11,6 +11,7 @@
 //! copies all of it: a stepper restarted from a state continues bit for bit as the stepper it was
 //! taken from.
 
+mod chart_watch;
 mod progress;
 mod state;
 
@@ -28,6 +29,7 @@ use crate::{
     System,
 };
 
+pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
 use progress::{jumped, Progress};
 use state::Memory;
 pub use state::{OwnedRow, State, StepReport};
@@ -165,6 +167,9 @@ struct Context<'a, S, const N: usize> {
     split: Split,
     kinds: [CoordinateKind; N],
     wrap_angles: bool,
+    /// The Legendre map's pivot ratio at the start of the run ([`legendre::conditioning`]), what the
+    /// chart watch compares with.
+    legendre_at_start: f64,
 }
 
 impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
@@ -177,6 +182,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let coordinates = system.coordinates();
         let kinds = coordinates.each_ref().map(|c| c.kind);
         let (h, steps) = (problem.step, problem.steps);
+        let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let started = Instant::now();
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
         let (schemes, derivative_path, mut progress) = if method.reduced {
@@ -207,6 +213,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 split: setup.split,
                 kinds,
                 wrap_angles: false,
+                legendre_at_start,
             },
             schemes,
             derivative_path,
@@ -367,7 +374,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     pub fn finish(self) -> Result<Summary, Error> {
         let Progress { k, config, momenta, mut monitor, mut record, .. } = self.progress;
         if let Some(jump) = monitor.finish() {
-            jumped(jump, self.context.method.energy_jump.action, &mut record.warnings)?;
+            jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
         }
         let final_q = config.output(self.context.wrap_angles).to_vec();
         let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&momenta)).to_vec();

@@ -4,7 +4,7 @@
 
 use nalgebra::SVector;
 
-use super::{Context, Equipped, OwnedRow, StepReport};
+use super::{chart_watch, Context, Equipped, OwnedRow, StepReport};
 use crate::chart::Configuration;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
 use crate::energy_jump::{Jump, JumpAction, Monitor};
@@ -108,7 +108,7 @@ impl<const N: usize> Progress<N> {
     /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
     /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
     #[inline]
-    pub(super) fn step<S, Sc: Scheme<N>>(
+    pub(super) fn step<S: System<N>, Sc: Scheme<N>>(
         &mut self,
         e: &Equipped<Sc, N>,
         context: &Context<'_, S, N>,
@@ -119,11 +119,17 @@ impl<const N: usize> Progress<N> {
         let base = e.scheme.base(self.config.base());
         let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
             solve_step(e, &base, &self.momenta, &self.predictor, &mut self.kept, &method.newton).map_err(|f| {
-                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason }
+                let predicted = e.scheme.increment(&self.predictor.predict());
+                let cause = self.singular_chart(context, &predicted);
+                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
             })?;
         let dq = e.scheme.increment(&z);
         if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
             return Err(Error::Diverged { step: k, t, what: "state" });
+        }
+        if let Some((i, by)) = chart_watch::fast_angle(&context.kinds, &dq) {
+            let warning = self.fast_angle(context, &dq, i, by);
+            self.record.warnings.push(warning);
         }
         let record = &mut self.record;
         record.discrete_energy.push(discrete_energy);
@@ -140,6 +146,11 @@ impl<const N: usize> Progress<N> {
         } else {
             None
         };
+        let jump = jump.map(|jump| {
+            let cause = self.singular_chart(context, &dq);
+            (jump, cause)
+        });
+        let record = &mut self.record;
         record.newton.total_iterations += stats.iterations;
         record.newton.total_jacobians += stats.jacobians;
         record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
@@ -150,21 +161,60 @@ impl<const N: usize> Progress<N> {
         self.predictor.push(z);
         self.k += 1;
         record.drift(split, &self.momenta);
-        if let Some(jump) = jump {
-            jumped(jump, action, &mut record.warnings)?;
+        if let Some((jump, cause)) = jump {
+            jumped(jump, cause, action, &mut record.warnings)?;
         }
         Ok(StepReport { k, discrete_energy, newton: stats })
+    }
+
+    /// The chart watch's diagnosis at q_k for the increment `dq` ([`chart_watch::singular_chart`]).
+    #[cold]
+    fn singular_chart<S: System<N>>(&self, context: &Context<'_, S, N>, dq: &[f64; N]) -> Option<String> {
+        let v = dq.map(|d| d / context.h);
+        chart_watch::singular_chart(context.system, context.legendre_at_start, self.config.base(), &v)
+    }
+
+    /// The warning for angle `i` advancing `by` radians in the step `dq` from q_k.
+    #[cold]
+    fn fast_angle<S: System<N>>(&self, context: &Context<'_, S, N>, dq: &[f64; N], i: usize, by: f64) -> Warning {
+        let name = &context.system.coordinates()[i].name;
+        let at = Some((self.k, self.k as f64 * context.h));
+        let advanced =
+            format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP);
+        match self.singular_chart(context, dq) {
+            Some(cause) => Warning::new(
+                WarningKind::SingularChart,
+                at,
+                format!(
+                    "{advanced}; {cause}: the trajectory cannot be trusted from here (use coordinates regular here)"
+                ),
+            ),
+            None => Warning::new(
+                WarningKind::UnderResolved,
+                at,
+                format!("{advanced}: the step does not resolve the motion (try a smaller step)"),
+            ),
+        }
     }
 }
 
 /// A jump of the energy as the method asks: an error, or a warning.
 #[cold]
-pub(super) fn jumped(jump: Jump, action: JumpAction, warnings: &mut Warnings) -> Result<(), Error> {
+pub(super) fn jumped(
+    jump: Jump,
+    cause: Option<String>,
+    action: JumpAction,
+    warnings: &mut Warnings,
+) -> Result<(), Error> {
+    let message = match cause {
+        Some(cause) => format!("{}; {cause}", jump.describe()),
+        None => jump.describe(),
+    };
     if action == JumpAction::Fail {
         let (step, t) = jump.at;
-        return Err(Error::EnergyJump { step, t, message: jump.describe() });
+        return Err(Error::EnergyJump { step, t, message });
     }
-    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), jump.describe()));
+    warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), message));
     Ok(())
 }
 

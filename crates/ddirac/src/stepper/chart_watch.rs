@@ -1,0 +1,58 @@
+//! The chart watch: signs that a run's coordinates have become singular, or that its step no longer
+//! resolves the motion, where the scheme itself cannot tell (paper §6: a chart is good only away
+//! from its singular set).
+//!
+//! Two tests, both cheap where nothing is wrong:
+//!
+//! - every step, whether an angle advanced by more than [`MAX_ANGLE_STEP`] (N comparisons);
+//! - at such a step, and where Newton's method fails or the energy jumps, how near to singular the
+//!   Legendre map ∂²L/∂v² is ([`legendre::conditioning`], one evaluation of its Hessian), against the
+//!   start of the run: near a pole of spherical coordinates its smallest pivot falls like sin²θ,
+//!   along the azimuth.
+
+use crate::mechanics::legendre;
+use crate::{CoordinateKind, System};
+
+/// The largest advance of an angle in one step, in radians, that a run accepts without a warning. A
+/// second-order step that turns an angle by a radian resolves a period with about six steps.
+pub const MAX_ANGLE_STEP: f64 = 1.0;
+
+/// The Legendre map counts as near-singular where its pivot ratio ([`legendre::conditioning`]) has
+/// fallen below this fraction of the ratio at the start of the run.
+pub const LEGENDRE_DROP: f64 = 1e-2;
+
+/// The angle that advanced most in the step `dq`, if by more than [`MAX_ANGLE_STEP`].
+#[inline]
+pub(super) fn fast_angle<const N: usize>(kinds: &[CoordinateKind; N], dq: &[f64; N]) -> Option<(usize, f64)> {
+    let mut fastest: Option<(usize, f64)> = None;
+    for (i, (&kind, &d)) in kinds.iter().zip(dq).enumerate() {
+        if kind == CoordinateKind::Angle && d.abs() > fastest.map_or(MAX_ANGLE_STEP, |(_, f)| f.abs()) {
+            fastest = Some((i, d));
+        }
+    }
+    fastest
+}
+
+/// Why the coordinates may be to blame at (q, v): the Legendre map's pivot ratio and the coordinate
+/// it degenerates along, when the ratio has fallen below [`LEGENDRE_DROP`] of `at_start` (a regular
+/// start; a Lagrangian degenerate from the start has nothing to compare with).
+#[cold]
+pub(super) fn singular_chart<S: System<N>, const N: usize>(
+    system: &S,
+    at_start: f64,
+    q: &[f64; N],
+    v: &[f64; N],
+) -> Option<String> {
+    if at_start.is_nan() || at_start <= 0.0 || v.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let (ratio, along) = legendre::conditioning(system, q, v);
+    (ratio < LEGENDRE_DROP * at_start).then(|| {
+        let name = &system.coordinates()[along].name;
+        format!(
+            "the Legendre map ∂²L/∂v² is near-singular here (its smallest pivot is {ratio:.1e} of its largest, \
+             against {at_start:.1e} at the start), along `{name}`: the coordinates are singular nearby (a pole \
+             of spherical coordinates, say), so `{name}` and its momentum are ill-conditioned"
+        )
+    })
+}
