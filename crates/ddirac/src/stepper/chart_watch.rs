@@ -4,7 +4,8 @@
 //!
 //! Two tests, both cheap where nothing is wrong:
 //!
-//! - every step, whether an angle advanced by more than [`MAX_ANGLE_STEP`] (N comparisons);
+//! - every step, whether an angle advanced by more than [`MAX_ANGLE_STEP`] ([`races`]: N products
+//!   and comparisons, no branch);
 //! - at such a step, and where Newton's method fails or the energy jumps, how near to singular the
 //!   Legendre map ∂²L/∂v² is ([`legendre::conditioning`], one evaluation of its Hessian), against the
 //!   start of the run: near a pole of spherical coordinates its smallest pivot falls like sin²θ,
@@ -21,16 +22,24 @@ pub const MAX_ANGLE_STEP: f64 = 1.0;
 /// fallen below this fraction of the ratio at the start of the run.
 pub const LEGENDRE_DROP: f64 = 1e-2;
 
-/// The angle that advanced most in the step `dq`, if by more than [`MAX_ANGLE_STEP`].
-#[inline]
-pub(super) fn fast_angle<const N: usize>(kinds: &[CoordinateKind; N], dq: &[f64; N]) -> Option<(usize, f64)> {
-    let mut fastest: Option<(usize, f64)> = None;
-    for (i, (&kind, &d)) in kinds.iter().zip(dq).enumerate() {
-        if kind == CoordinateKind::Angle && d.abs() > fastest.map_or(MAX_ANGLE_STEP, |(_, f)| f.abs()) {
-            fastest = Some((i, d));
-        }
+/// Whether an angle advanced by more than [`MAX_ANGLE_STEP`] in the step `dq`; `angles` is 1 at the
+/// angles and 0 elsewhere. Branch-free over the coordinates: it runs every step.
+#[inline(always)]
+pub(super) fn races<const N: usize>(angles: &[f64; N], dq: &[f64; N]) -> bool {
+    let mut largest = 0.0f64;
+    for (a, d) in angles.iter().zip(dq) {
+        let turned = a * d.abs();
+        largest = if turned > largest { turned } else { largest };
     }
-    fastest
+    largest > MAX_ANGLE_STEP
+}
+
+/// The angle that advanced most in the step `dq`, and by how much.
+#[cold]
+pub(super) fn fastest_angle<const N: usize>(kinds: &[CoordinateKind; N], dq: &[f64; N]) -> (usize, f64) {
+    let angles = (0..N).filter(|&i| kinds[i] == CoordinateKind::Angle);
+    let i = angles.max_by(|&i, &j| dq[i].abs().total_cmp(&dq[j].abs())).unwrap_or(0);
+    (i, dq[i])
 }
 
 /// Why the coordinates may be to blame at (q, v): the Legendre map's pivot ratio and the coordinate

@@ -167,6 +167,8 @@ struct Context<'a, S, const N: usize> {
     split: Split,
     kinds: [CoordinateKind; N],
     wrap_angles: bool,
+    /// 1 at the angles, 0 elsewhere ([`chart_watch::races`]).
+    angles: [f64; N],
     /// The Legendre map's pivot ratio at the start of the run ([`legendre::conditioning`]), what the
     /// chart watch compares with.
     legendre_at_start: f64,
@@ -213,6 +215,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 split: setup.split,
                 kinds,
                 wrap_angles: false,
+                angles: kinds.map(|kind| f64::from(u8::from(kind == CoordinateKind::Angle))),
                 legendre_at_start,
             },
             schemes,

@@ -127,7 +127,8 @@ impl<const N: usize> Progress<N> {
         if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
             return Err(Error::Diverged { step: k, t, what: "state" });
         }
-        if let Some((i, by)) = chart_watch::fast_angle(&context.kinds, &dq) {
+        if chart_watch::races(&context.angles, &dq) {
+            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq);
             let warning = self.fast_angle(context, &dq, i, by);
             self.record.warnings.push(warning);
         }
