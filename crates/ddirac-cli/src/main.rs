@@ -16,6 +16,7 @@ mod compare;
 mod convergence;
 mod diagnostics;
 mod estimate;
+mod exact;
 mod lock;
 mod manifest;
 mod npy;

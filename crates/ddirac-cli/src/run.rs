@@ -1,6 +1,6 @@
 //! `ddirac run`: reads the spec, applies `--set`, validates, integrates while streaming rows to
-//! `trajectory.csv`, writes `summary.json` (and the figures), and commits the files only on
-//! success, replacing those of the earlier run in the directory as a set (see [`RunDir`]).
+//! `trajectory.csv` (and the exact solution, when the system has one, to `exact.csv`), writes
+//! `summary.json` (and the figures), and commits the files only on success, replacing those of the earlier run in the directory as a set (see [`RunDir`]).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -8,6 +8,7 @@ use std::time::Instant;
 use ddirac::Role;
 
 use crate::diagnostics::{CliError, SpecSource};
+use crate::exact::ExactFile;
 use crate::output::{self, Trajectory};
 use crate::plot::ToolError;
 use crate::progress::Progress;
@@ -114,16 +115,25 @@ pub fn write_run(
     let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
     let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
     let mut trajectory = Trajectory::create(staging, &names, &group, formats)?;
+    let system = plan.system.as_ref();
+    // The exact solution goes with the CSV: a run asked for NumPy files only writes no CSV at all.
+    let mut exact = formats.csv.then(|| ExactFile::new(staging, system, &plan.problem.q0, plan.output.wrap_angles));
     let summary = plan
         .system
         .integrate(&plan.problem, &plan.method, &plan.output, &mut |row| {
             progress.update(row.k);
             signals::check(Some(row.k))?;
+            if let Some(exact) = &mut exact {
+                exact.write(system, row)?;
+            }
             Ok(trajectory.write(row)?)
         })
         .map_err(|e| library_error(source, plan, dir, e))?;
     report::print_warnings(&summary.warnings);
     let mut files = trajectory.finish()?;
+    if let Some(exact) = exact {
+        files.extend(exact.finish()?);
+    }
     let total = started.elapsed().as_secs_f64();
     let json = report::summary_json(plan, &summary, spec, total);
     files.push(output::json(staging, "summary.json", &json)?);

@@ -63,7 +63,9 @@ fn a_rerun_with_fewer_formats_leaves_no_npy_and_no_figures_of_the_earlier_run() 
     succeed(&dir, &["--format", "csv", "--set", "time.steps=50"]);
     let second = files(&out);
     let expected: BTreeSet<String> =
-        [".ddirac-files", "summary.json", "trajectory.csv", "notes.txt", "npy/mine.npy"].map(String::from).into();
+        [".ddirac-files", "summary.json", "trajectory.csv", "exact.csv", "notes.txt", "npy/mine.npy"]
+            .map(String::from)
+            .into();
     assert_eq!(second, expected, "the earlier run's files are left beside the new ones");
     assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
     let rows = std::fs::read_to_string(out.join("trajectory.csv")).unwrap().lines().count();

@@ -98,5 +98,5 @@ fn the_lock_and_the_temporaries_of_a_killed_run_are_taken_over() {
     let mut left: Vec<String> =
         std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
     left.sort();
-    assert_eq!(left, [".ddirac-files", ".ddirac-notes.partial", "summary.json", "trajectory.csv"]);
+    assert_eq!(left, [".ddirac-files", ".ddirac-notes.partial", "exact.csv", "summary.json", "trajectory.csv"]);
 }

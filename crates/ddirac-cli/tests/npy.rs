@@ -162,7 +162,7 @@ fn npy_columns_equal_the_csv_columns_bit_for_bit() {
     succeed(CHARGED_PARTICLE, &["--format", "csv,npy"], &dir);
     assert_eq!(assert_npy_matches_csv(&dir.out()), 101);
     let expected: BTreeSet<String> =
-        [".ddirac-files", "npy", "summary.json", "trajectory.csv"].map(str::to_owned).into();
+        [".ddirac-files", "exact.csv", "npy", "summary.json", "trajectory.csv"].map(str::to_owned).into();
     assert_eq!(files_in(&dir.out()), expected);
 
     // Another system, and a number of steps that is not a multiple of `every` (the last row is written).
@@ -181,14 +181,15 @@ fn the_format_is_chosen_by_the_spec_and_overridden_by_the_flag() {
     let dir = TempDir::new("spec-format");
     succeed(CHARGED_PARTICLE, &["--set", "output.format=[\"npy\"]"], &dir);
     let expected: BTreeSet<String> = [".ddirac-files", "npy", "summary.json"].map(str::to_owned).into();
-    assert_eq!(files_in(&dir.out()), expected, "`format = [\"npy\"]` writes no CSV");
+    assert_eq!(files_in(&dir.out()), expected, "`format = [\"npy\"]` writes no CSV, not even `exact.csv`");
     let t = Array::read(&dir.out().join("npy/t.npy")).f64s();
     assert_eq!(t.len(), 101);
     assert_eq!(t[100], 20.0);
 
     let dir = TempDir::new("flag-format");
     succeed(CHARGED_PARTICLE, &["--set", "output.format=[\"npy\"]", "--format", "csv"], &dir);
-    let expected: BTreeSet<String> = [".ddirac-files", "summary.json", "trajectory.csv"].map(str::to_owned).into();
+    let expected: BTreeSet<String> =
+        [".ddirac-files", "exact.csv", "summary.json", "trajectory.csv"].map(str::to_owned).into();
     assert_eq!(files_in(&dir.out()), expected, "`--format csv` overrides the spec");
 
     let dir = TempDir::new("bad-format");

@@ -81,7 +81,7 @@ fn plot_draws_the_figures_of_a_run_with_their_axis_names() {
     let out = dir.out();
     let output = succeed(&["plot", out.to_str().unwrap()], &dir.0);
     let stdout = String::from_utf8(output.stdout).unwrap();
-    assert!(stdout.contains("4 figures"), "{stdout}");
+    assert!(stdout.contains("5 figures"), "{stdout}");
 
     let coordinates = texts(&figure(&out, "coordinates"));
     for name in ["q1", "q2", "q3", "theta", "t", "charged_particle: coordinates"] {

@@ -29,6 +29,10 @@ pub trait DynSystem: Send + Sync {
 
     /// A stepper for a problem; see [`Stepper::new`].
     fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error>;
+
+    /// The exact motion from (q0, p0) at time t on the coordinates it is known for; see
+    /// [`System::exact_solution`]. `None` for a system without one, or for vectors of another size.
+    fn exact_solution(&self, q0: &[f64], p0: &[f64], t: f64) -> Option<Vec<Option<f64>>>;
 }
 
 /// Wraps a system with `N` coordinates as a [`DynSystem`].
@@ -37,6 +41,10 @@ pub trait DynSystem: Send + Sync {
 /// use ddirac::{DynSystem, Erased, systems::ChargedParticle};
 /// let system: Box<dyn DynSystem> = Box::new(Erased(ChargedParticle::default()));
 /// assert_eq!(system.coordinates()[3].name, "theta");
+/// // The paper's exact gyration (§7.1), known for every coordinate: at t = 0 it is q0.
+/// let exact = system.exact_solution(&[0.0; 4], &[1.0, 0.0, 1.0, 1.0], 0.0).unwrap();
+/// assert!(exact.len() == 4 && exact.iter().all(|x| x.is_some_and(|v| v.abs() < 1e-15)));
+/// assert_eq!(system.exact_solution(&[0.0; 3], &[1.0, 0.0, 1.0], 0.0), None);
 /// ```
 #[derive(Debug, Clone)]
 pub struct Erased<S, const N: usize>(pub S);
@@ -62,6 +70,11 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
 
     fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error> {
         Ok(Box::new(Stepper::new(&self.0, problem, method)?))
+    }
+
+    fn exact_solution(&self, q0: &[f64], p0: &[f64], t: f64) -> Option<Vec<Option<f64>>> {
+        let (q0, p0): (&[f64; N], &[f64; N]) = (q0.try_into().ok()?, p0.try_into().ok()?);
+        self.0.exact_solution(q0, p0, t).map(|exact| exact.to_vec())
     }
 }
 

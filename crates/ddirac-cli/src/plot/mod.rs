@@ -9,6 +9,7 @@
 
 mod data;
 mod error;
+mod exact;
 mod figure;
 mod run_figures;
 mod sample;
@@ -103,8 +104,9 @@ impl Drop for Temporary {
 pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
     let summary = RunSummary::read(dir)?;
     let trajectory = TrajectoryFile::open(dir, &summary.coordinates)?;
+    let exact = exact::read(dir)?;
     let mut written = vec![];
-    for figure in run_figures(&summary, &trajectory)? {
+    for figure in run_figures(&summary, &trajectory, &exact)? {
         written.extend(save(&figure, dir)?);
     }
     Ok(written)

@@ -1,6 +1,9 @@
 //! The figures of one run:
 //!
-//! - `coordinates`: each coordinate against time, one panel per coordinate;
+//! - `coordinates`: each coordinate against time, one panel per coordinate, with the exact motion
+//!   drawn under it (wide and pale) where the run wrote one (`exact.csv`);
+//! - `exact_path`: where the exact motion is known for two coordinates or more, the computed and the
+//!   exact path in the plane of the first two (the paper's §7.1 figure for the charged particle);
 //! - `energy_error`: (H − H₀)/|H₀| against time (H − H₀ when H₀ = 0);
 //! - `momentum_map`: J − J₀ for each group coordinate (only for systems with a symmetry);
 //! - `discrete_energy`: L_d(q_k, q_{k+1}) against t_k, the paper's "discrete energy";
@@ -14,6 +17,7 @@
 use ddirac::systems::DoubleSphericalPendulum;
 
 use super::data::{RowView, RunSummary, TrajectoryFile};
+use super::exact::Exact;
 use super::figure::{Figure, Panel, Scale, Series};
 use super::sample::{Envelope, Stride};
 use super::ToolError;
@@ -34,10 +38,12 @@ struct Gathered {
     discrete_energy: Envelope,
     has_discrete_energy: bool,
     path: Option<(DoubleSphericalPendulum, [usize; 4], Stride)>,
+    /// The computed path in the plane of the exact path's coordinates.
+    plane: Option<([usize; 2], Stride)>,
 }
 
 impl Gathered {
-    fn new(summary: &RunSummary, trajectory: &TrajectoryFile) -> Self {
+    fn new(summary: &RunSummary, trajectory: &TrajectoryFile, exact: &Exact) -> Self {
         let rows = trajectory.rows;
         Self {
             coordinates: summary.coordinates.iter().map(|_| Envelope::new(rows)).collect(),
@@ -49,6 +55,10 @@ impl Gathered {
             discrete_energy: Envelope::new(rows),
             has_discrete_energy: false,
             path: pendulum(summary).map(|(p, i)| (p, i, Stride::new(rows))),
+            plane: exact.path.as_ref().and_then(|([x, y], _)| {
+                let at = |name: &String| summary.coordinates.iter().position(|c| c == name);
+                Some(([at(x)?, at(y)?], Stride::new(rows)))
+            }),
         }
     }
 
@@ -70,6 +80,9 @@ impl Gathered {
         }
         self.has_discrete_energy |= row.discrete_energy.is_some();
         self.discrete_energy.push(row.t, row.discrete_energy);
+        if let Some(([x, y], plane)) = &mut self.plane {
+            plane.push((row.q[*x], row.q[*y]));
+        }
         if let Some((pendulum, index, path)) = &mut self.path {
             let bob = pendulum.second_bob(&index.map(|i| row.q[i]));
             path.push((bob[0], bob[1]));
@@ -92,12 +105,22 @@ fn pendulum(summary: &RunSummary) -> Option<(DoubleSphericalPendulum, [usize; 4]
     Some((pendulum, [index[0]?, index[1]?, index[2]?, index[3]?]))
 }
 
-/// The figures of the run described by `summary` whose trajectory is `trajectory`.
-pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile) -> Result<Vec<Figure>, ToolError> {
-    let mut gathered = Gathered::new(summary, trajectory);
+/// The figures of the run described by `summary` whose trajectory is `trajectory`, with its exact
+/// motion `exact` where the system has one.
+pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile, exact: &Exact) -> Result<Vec<Figure>, ToolError> {
+    let mut gathered = Gathered::new(summary, trajectory, exact);
     trajectory.for_each(|row| gathered.push(row))?;
     let Gathered {
-        coordinates, energy, energy0, has_energy, momentum, discrete_energy, has_discrete_energy, path, ..
+        coordinates,
+        energy,
+        energy0,
+        has_energy,
+        momentum,
+        discrete_energy,
+        has_discrete_energy,
+        path,
+        plane,
+        ..
     } = gathered;
     let system = &summary.system;
     let titled = |name: &str, title: String, panels: Vec<Panel>| {
@@ -111,10 +134,27 @@ pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile) -> Result<
         if path.is_some() && name == "phi1" {
             phi1 = Some(points.clone());
         }
-        let series = Series::line(points).wrapped(summary.is_wrapped(name));
-        panels.push(Panel::new("t", name.as_str(), vec![series]));
+        let wrapped = summary.is_wrapped(name);
+        let series = match exact.series.iter().find(|(n, _)| n == name) {
+            Some((_, exact)) => vec![
+                Series { wide: true, ..Series::named("exact", exact.clone()) }.wrapped(wrapped),
+                Series::named("computed", points).wrapped(wrapped),
+            ],
+            None => vec![Series::line(points).wrapped(wrapped)],
+        };
+        panels.push(Panel::new("t", name.as_str(), series));
     }
     let mut figures = vec![titled("coordinates", format!("{system}: coordinates"), panels)];
+
+    if let (Some(([x, y], exact_path)), Some((_, plane))) = (&exact.path, plane) {
+        let series = vec![
+            Series { wide: true, ..Series::named("exact", exact_path.clone()) },
+            Series::named("computed", plane.finish()),
+        ];
+        let panel = Panel::new(x.as_str(), y.as_str(), series).scale(Scale::Equal);
+        let title = format!("{system}: path in the ({x}, {y}) plane, computed and exact");
+        figures.push(titled("exact_path", title, vec![panel]));
+    }
 
     if has_energy {
         let relative = energy0.is_some_and(|h0| h0 != 0.0);
