@@ -41,9 +41,11 @@ pub trait DynSystem: Send + Sync {
 /// use ddirac::{DynSystem, Erased, systems::ChargedParticle};
 /// let system: Box<dyn DynSystem> = Box::new(Erased(ChargedParticle::default()));
 /// assert_eq!(system.coordinates()[3].name, "theta");
-/// // The paper's exact gyration (§7.1), known for every coordinate: at t = 0 it is q0.
-/// let exact = system.exact_solution(&[0.0; 4], &[1.0, 0.0, 1.0, 1.0], 0.0).unwrap();
-/// assert!(exact.len() == 4 && exact.iter().all(|x| x.is_some_and(|v| v.abs() < 1e-15)));
+/// // The paper's exact gyration (§7.1), known for q1, q2, q3 (not for θ): q(t) = (sin t, cos t − 1, t).
+/// let exact = system.exact_solution(&[0.0; 4], &[1.0, 0.0, 1.0, 1.0], 0.5).unwrap();
+/// assert_eq!(exact[3], None);
+/// let expected = [0.5f64.sin(), 0.5f64.cos() - 1.0, 0.5];
+/// assert!((0..3).all(|i| (exact[i].unwrap() - expected[i]).abs() < 1e-15));
 /// assert_eq!(system.exact_solution(&[0.0; 3], &[1.0, 0.0, 1.0], 0.0), None);
 /// ```
 #[derive(Debug, Clone)]
