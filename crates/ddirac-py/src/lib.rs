@@ -1,0 +1,24 @@
+//! `ddirac._ddirac`: the extension module under the Python package `ddirac` (`python/ddirac`).
+//!
+//! It offers the engine in plain types (lists, tuples, floats, strings) and returns NumPy arrays; the
+//! Python package shapes the public API on top (`ddirac.System`, `ddirac.simulate`, `ddirac.Error`).
+//! Integration runs with the GIL released.
+
+mod error;
+mod simulate;
+mod system;
+
+use pyo3::prelude::*;
+
+/// The extension module.
+#[pymodule]
+fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("Error", m.py().get_type::<error::Error>())?;
+    m.add_class::<system::SystemHandle>()?;
+    m.add_function(wrap_pyfunction!(system::builtin_system, m)?)?;
+    m.add_function(wrap_pyfunction!(system::text_system, m)?)?;
+    m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,209 @@
+//! One run: problem and method from plain arguments, the rows gathered into arrays while the GIL is
+//! released, and the summary as the dict `summary.json` holds.
+
+use ddirac::{
+    Connection, Differentiation, EnergyJump, InitialMomentum, JumpAction, Method, NewtonOptions, OutputOptions,
+    Problem, Rule, Summary, Variant,
+};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::error::raise;
+use crate::system::SystemHandle;
+
+/// The method of a run from its keys, as a spec's `[method]` table gives them.
+#[allow(clippy::too_many_arguments)]
+fn method(
+    rule: &str,
+    variant: &str,
+    reduced: bool,
+    connection: Option<Vec<Vec<f64>>>,
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    reuse_jacobian: Option<bool>,
+    derivatives: &str,
+    check_invariance: bool,
+    on_energy_jump: &str,
+    energy_jump_threshold: Option<f64>,
+) -> PyResult<Method> {
+    let one_of = |key: &str, value: &str, names: &[&str]| {
+        raise(format!("`{key}` = {value:?} is not one of: {}", names.join(", ")))
+    };
+    let rule = Rule::from_name(rule).ok_or_else(|| one_of("rule", rule, &Rule::ALL.map(Rule::name)))?;
+    let variant = match variant {
+        "plus" => Variant::Plus,
+        "minus" => Variant::Minus,
+        other => return Err(one_of("variant", other, &["plus", "minus"])),
+    };
+    let differentiation = Differentiation::from_name(derivatives)
+        .ok_or_else(|| one_of("derivatives", derivatives, &Differentiation::ALL.map(Differentiation::name)))?;
+    let action = JumpAction::from_name(on_energy_jump)
+        .ok_or_else(|| one_of("on_energy_jump", on_energy_jump, &JumpAction::ALL.map(JumpAction::name)))?;
+    let defaults = NewtonOptions::default();
+    let newton = NewtonOptions {
+        tolerance: tolerance.unwrap_or(defaults.tolerance),
+        max_iterations: max_iterations.unwrap_or(defaults.max_iterations),
+        reuse_jacobian: reuse_jacobian.unwrap_or(defaults.reuse_jacobian),
+    };
+    if !(newton.tolerance.is_finite() && newton.tolerance > 0.0) {
+        return Err(raise(format!("`tolerance` = {} must be a positive number", newton.tolerance)));
+    }
+    let connection = connection.map(|rows| Connection::new(&rows)).transpose().map_err(raise)?;
+    let energy_jump =
+        EnergyJump { threshold: energy_jump_threshold.unwrap_or(EnergyJump::default().threshold), action };
+    Ok(Method { rule, variant, reduced, connection, newton, check_invariance, differentiation, energy_jump })
+}
+
+/// The rows of a run, gathered column by column.
+#[derive(Default)]
+struct Columns {
+    t: Vec<f64>,
+    q: Vec<f64>,
+    p: Vec<f64>,
+    energy: Vec<f64>,
+    discrete_energy: Vec<f64>,
+    momentum_map: Vec<f64>,
+}
+
+/// Integrates `system` from (q0, p0 or v0) for `steps` steps of `step`; returns a dict of NumPy
+/// arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with NaN on the last row,
+/// `momentum_map` of shape (rows, n_g)) and the `summary` dict.
+#[pyfunction]
+#[pyo3(signature = (
+    system, q0, p0, v0, step, steps, every, wrap_angles, rule, variant, reduced, connection, tolerance,
+    max_iterations, reuse_jacobian, derivatives, check_invariance, on_energy_jump, energy_jump_threshold
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    system: &SystemHandle,
+    q0: Vec<f64>,
+    p0: Option<Vec<f64>>,
+    v0: Option<Vec<f64>>,
+    step: f64,
+    steps: usize,
+    every: usize,
+    wrap_angles: bool,
+    rule: &str,
+    variant: &str,
+    reduced: bool,
+    connection: Option<Vec<Vec<f64>>>,
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    reuse_jacobian: Option<bool>,
+    derivatives: &str,
+    check_invariance: bool,
+    on_energy_jump: &str,
+    energy_jump_threshold: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = method(
+        rule,
+        variant,
+        reduced,
+        connection,
+        tolerance,
+        max_iterations,
+        reuse_jacobian,
+        derivatives,
+        check_invariance,
+        on_energy_jump,
+        energy_jump_threshold,
+    )?;
+    let initial = match (p0, v0) {
+        (Some(p), None) => InitialMomentum::Momentum(p),
+        (None, Some(v)) => InitialMomentum::Velocity(v),
+        _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
+    };
+    if every == 0 {
+        return Err(raise("`every` must be at least 1"));
+    }
+    let problem = Problem::new(step, steps, q0, initial);
+    let output = OutputOptions { every, wrap_angles };
+    let inner = system.inner.clone();
+    let n = inner.coordinates().len();
+    let (columns, summary) = py
+        .detach(move || {
+            let mut columns = Columns::default();
+            let summary = inner.integrate(&problem, &method, &output, &mut |row| {
+                columns.t.push(row.t);
+                columns.q.extend_from_slice(row.q);
+                columns.p.extend_from_slice(row.p);
+                columns.energy.push(row.energy);
+                columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
+                columns.momentum_map.extend_from_slice(row.momentum_map);
+                Ok(())
+            });
+            summary.map(|summary| (columns, summary))
+        })
+        .map_err(raise)?;
+    let rows = columns.t.len();
+    let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
+    let out = PyDict::new(py);
+    out.set_item("t", PyArray1::from_vec(py, columns.t))?;
+    out.set_item("q", PyArray1::from_vec(py, columns.q).reshape([rows, n])?)?;
+    out.set_item("p", PyArray1::from_vec(py, columns.p).reshape([rows, n])?)?;
+    out.set_item("energy", PyArray1::from_vec(py, columns.energy))?;
+    out.set_item("discrete_energy", PyArray1::from_vec(py, columns.discrete_energy))?;
+    out.set_item("momentum_map", PyArray1::from_vec(py, columns.momentum_map).reshape([rows, n_g])?)?;
+    out.set_item("summary", summary_dict(py, system, &summary)?)?;
+    Ok(out)
+}
+
+/// The summary with the keys of `summary.json` that a run from Python has.
+fn summary_dict<'py>(py: Python<'py>, system: &SystemHandle, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("ddirac_version", env!("CARGO_PKG_VERSION"))?;
+    d.set_item("system", &system.name)?;
+    let parameters = PyDict::new(py);
+    for (name, value) in &system.parameters {
+        parameters.set_item(name, value)?;
+    }
+    d.set_item("parameters", parameters)?;
+    d.set_item("coordinates", &s.coordinates)?;
+    d.set_item("steps", s.steps)?;
+    d.set_item("step", s.step)?;
+    d.set_item("duration", s.step * s.steps as f64)?;
+    let last = PyDict::new(py);
+    last.set_item("q", &s.final_q)?;
+    last.set_item("p", &s.final_p)?;
+    d.set_item("final", last)?;
+    let stats = |stats: &ddirac::Stats, with_initial: bool| -> PyResult<Bound<'py, PyDict>> {
+        let e = PyDict::new(py);
+        if with_initial {
+            e.set_item("initial", stats.initial)?;
+        }
+        e.set_item("min", stats.min)?;
+        e.set_item("max", stats.max)?;
+        e.set_item("mean", stats.mean)?;
+        Ok(e)
+    };
+    d.set_item("energy", stats(&s.energy, true)?)?;
+    d.set_item("discrete_energy", stats(&s.discrete_energy, false)?)?;
+    let j = PyDict::new(py);
+    j.set_item("initial", &s.momentum_map.initial)?;
+    j.set_item("max_drift", s.momentum_map.max_drift)?;
+    j.set_item("max_relative_drift", s.momentum_map.max_relative_drift)?;
+    d.set_item("momentum_map", j)?;
+    d.set_item("derivatives", s.derivatives.to_string())?;
+    let newton = PyDict::new(py);
+    newton.set_item("total_iterations", s.newton.total_iterations)?;
+    newton.set_item("total_jacobians", s.newton.total_jacobians)?;
+    newton.set_item("max_iterations", s.newton.max_iterations)?;
+    newton.set_item("max_residual", s.newton.max_residual)?;
+    d.set_item("newton", newton)?;
+    d.set_item("wall_seconds", s.wall_seconds)?;
+    d.set_item("reference_error", s.reference_error)?;
+    let warnings = PyList::empty(py);
+    for w in &s.warnings {
+        let entry = PyDict::new(py);
+        entry.set_item("kind", w.kind.name())?;
+        entry.set_item("step", w.step)?;
+        entry.set_item("t", w.t)?;
+        entry.set_item("message", &w.message)?;
+        entry.set_item("count", w.count)?;
+        warnings.append(entry)?;
+    }
+    d.set_item("warnings", warnings)?;
+    Ok(d)
+}

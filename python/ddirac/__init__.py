@@ -1,0 +1,20 @@
+"""ddirac: structure-preserving simulation of mechanical systems with symmetry.
+
+Discrete Lagrange–Dirac systems, their reduction by an abelian symmetry to the discrete
+Lagrange–Poincaré–Dirac equations, and the reconstruction of the group motion, from NumPy::
+
+    import ddirac
+    dsp = ddirac.System.builtin("double_spherical_pendulum")
+    run = ddirac.simulate(dsp, q0=[0, 2.25, 2, 3], p0=[0, 0, 1, 1], step=0.01, steps=10_000,
+                          rule="midpoint", reduced=True)
+    run.t, run.q, run.p, run.energy, run.discrete_energy, run.momentum_map   # NumPy arrays
+    run.summary                                                              # the dict of summary.json
+
+Every error is a :class:`ddirac.Error` whose message names the argument and the cause.
+"""
+
+from ._ddirac import Error, __version__
+from .system import System, builtin_systems
+from .run import Run, simulate
+
+__all__ = ["Error", "Run", "System", "builtin_systems", "simulate", "__version__"]

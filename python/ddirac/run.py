@@ -1,0 +1,169 @@
+"""One run: :func:`simulate` and the :class:`Run` it returns."""
+
+import math
+
+import numpy as np
+
+from . import _ddirac
+
+#: Method keys :func:`simulate` takes besides ``rule``, ``variant`` and ``reduced``, with their
+#: defaults (as the ``[method]`` table of a spec).
+METHOD_KEYS = {
+    "connection": None,
+    "tolerance": None,
+    "max_iterations": None,
+    "reuse_jacobian": None,
+    "derivatives": "auto",
+    "check_invariance": True,
+    "on_energy_jump": "warn",
+    "energy_jump_threshold": None,
+}
+
+# Largest relative deviation of duration / step from a whole number of steps.
+_WHOLE = 1e-9
+
+
+class Run:
+    """The rows of a run as NumPy arrays, and its summary.
+
+    Attributes: ``t`` (rows,), ``q`` and ``p`` (rows, n), ``energy`` (the Hamiltonian H(q, p)),
+    ``discrete_energy`` (L_d(q_k, q_{k+1}), NaN on the last row), ``momentum_map`` (rows, number of
+    group coordinates), ``summary`` (the dict ``summary.json`` holds), ``coordinates`` (the names of
+    the columns of ``q`` and ``p``) and ``group`` (those of ``momentum_map``).
+    """
+
+    def __init__(self, arrays, coordinates, group):
+        self.t = arrays["t"]
+        self.q = arrays["q"]
+        self.p = arrays["p"]
+        self.energy = arrays["energy"]
+        self.discrete_energy = arrays["discrete_energy"]
+        self.momentum_map = arrays["momentum_map"]
+        self.summary = arrays["summary"]
+        self.coordinates = list(coordinates)
+        self.group = list(group)
+
+    def __len__(self):
+        return len(self.t)
+
+    def __repr__(self):
+        return (f"ddirac.Run({self.summary['system']!r}, rows={len(self)}, steps={self.summary['steps']}, "
+                f"step={self.summary['step']})")
+
+    def columns(self):
+        """The rows as named columns, as ``trajectory.csv`` names them: ``t``, each coordinate,
+        ``p_<coordinate>``, ``energy``, ``discrete_energy``, ``momentum_<group coordinate>``."""
+        out = {"t": self.t}
+        out.update({name: self.q[:, i] for i, name in enumerate(self.coordinates)})
+        out.update({f"p_{name}": self.p[:, i] for i, name in enumerate(self.coordinates)})
+        out["energy"] = self.energy
+        out["discrete_energy"] = self.discrete_energy
+        out.update({f"momentum_{name}": self.momentum_map[:, i] for i, name in enumerate(self.group)})
+        return out
+
+    def to_pandas(self):
+        """The named columns as a ``pandas.DataFrame`` (pandas is imported only here)."""
+        import pandas
+
+        return pandas.DataFrame(self.columns())
+
+
+def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint",
+             variant="plus", reduced=False, every=1, wrap_angles=False, **method):
+    """Integrates ``system`` from ``q0`` with momenta ``p0`` or velocities ``v0``.
+
+    Give two of ``step``, ``steps`` and ``duration`` (all three must agree). ``q0``, ``p0`` and
+    ``v0`` are sequences in the order of ``system.coordinates``, or dicts by coordinate name.
+    ``rule`` is ``left``, ``right``, ``midpoint`` or ``trapezoid``; ``variant`` ``plus`` or ``minus``;
+    ``reduced=True`` integrates the reduced equations and reconstructs the group motion. Other method
+    keys: ``connection`` (rows of K, one per group coordinate), ``tolerance``, ``max_iterations``,
+    ``reuse_jacobian``, ``derivatives`` (``auto``, ``compiled``, ``dual``), ``check_invariance``,
+    ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``. Every
+    ``every``-th row is kept (and the last).
+
+    The GIL is released while the run integrates.
+    """
+    from .system import System
+
+    if not isinstance(system, System):
+        raise _ddirac.Error(f"`system` must be a ddirac.System, not {type(system).__name__}")
+    unknown = sorted(set(method) - set(METHOD_KEYS))
+    if unknown:
+        raise _ddirac.Error(f"unknown method key {unknown[0]!r}; the method keys are: rule, variant, reduced, "
+                            + ", ".join(METHOD_KEYS))
+    keys = {**METHOD_KEYS, **method}
+    names = system.coordinates
+    q0 = _vector(q0, names, "q0")
+    if (p0 is None) == (v0 is None):
+        raise _ddirac.Error("give exactly one of `p0` (momenta) and `v0` (velocities)")
+    p0 = None if p0 is None else _vector(p0, names, "p0")
+    v0 = None if v0 is None else _vector(v0, names, "v0")
+    h, n = _grid(step, steps, duration)
+    every = _count(every, "every")
+    connection = keys["connection"]
+    if connection is not None:
+        connection = [[float(x) for x in row] for row in np.atleast_2d(np.asarray(connection, dtype=float))]
+    arrays = _ddirac.simulate(
+        system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), str(rule), str(variant), bool(reduced),
+        connection,
+        None if keys["tolerance"] is None else float(keys["tolerance"]),
+        None if keys["max_iterations"] is None else _count(keys["max_iterations"], "max_iterations"),
+        None if keys["reuse_jacobian"] is None else bool(keys["reuse_jacobian"]),
+        str(keys["derivatives"]),
+        bool(keys["check_invariance"]),
+        str(keys["on_energy_jump"]),
+        None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
+    )
+    return Run(arrays, names, system.group)
+
+
+def _vector(values, names, what):
+    if isinstance(values, dict):
+        missing = [n for n in names if n not in values]
+        extra = [k for k in values if k not in names]
+        if missing or extra:
+            raise _ddirac.Error(f"`{what}` must give each coordinate once ({', '.join(names)}): "
+                                + (f"missing {', '.join(missing)}" if missing else f"unknown {', '.join(map(str, extra))}"))
+        values = [values[n] for n in names]
+    array = np.asarray(values, dtype=float)
+    if array.ndim != 1 or len(array) != len(names):
+        raise _ddirac.Error(f"`{what}` has {array.size} entries; the system has {len(names)} coordinates "
+                            f"({', '.join(names)})")
+    bad = np.flatnonzero(~np.isfinite(array))
+    if bad.size:
+        raise _ddirac.Error(f"`{what}` entry {bad[0]} (`{names[bad[0]]}`) is {array[bad[0]]}, not a finite number")
+    return [float(x) for x in array]
+
+
+def _count(value, what):
+    if isinstance(value, bool) or int(value) != value or int(value) < 1:
+        raise _ddirac.Error(f"`{what}` must be a whole number of at least 1, not {value!r}")
+    return int(value)
+
+
+def _positive(value, what):
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise _ddirac.Error(f"`{what}` must be a positive number, not {value!r}")
+    return value
+
+
+def _grid(step, steps, duration):
+    """(step, steps) from two or three of step, steps, duration, as a spec's ``[time]`` table."""
+    h = None if step is None else _positive(step, "step")
+    n = None if steps is None else _count(steps, "steps")
+    d = None if duration is None else _positive(duration, "duration")
+    given = sum(x is not None for x in (h, n, d))
+    if given < 2:
+        raise _ddirac.Error("give two of `step`, `steps` and `duration`")
+    if h is not None and n is not None:
+        if d is not None and abs(h * n - d) > _WHOLE * d:
+            raise _ddirac.Error(f"inconsistent time grid: step × steps = {h * n}, but duration = {d}")
+        return h, n
+    if n is not None:
+        return d / n, n
+    ratio = d / h
+    whole = round(ratio)
+    if whole < 1 or abs(ratio - whole) > _WHOLE * whole:
+        raise _ddirac.Error(f"duration / step = {ratio} is not a whole number of steps; give `steps` instead")
+    return h, int(whole)
