@@ -5,6 +5,9 @@ use ddirac::{
     Connection, Differentiation, EnergyJump, InitialMomentum, JumpAction, Method, NewtonOptions, OutputOptions,
     Problem, Rule, Summary, Variant,
 };
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
+
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -122,21 +125,20 @@ pub fn simulate<'py>(
     let output = OutputOptions { every, wrap_angles };
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
-    let (columns, summary) = py
-        .detach(move || {
-            let mut columns = Columns::default();
-            let summary = inner.integrate(&problem, &method, &output, &mut |row| {
-                columns.t.push(row.t);
-                columns.q.extend_from_slice(row.q);
-                columns.p.extend_from_slice(row.p);
-                columns.energy.push(row.energy);
-                columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
-                columns.momentum_map.extend_from_slice(row.momentum_map);
-                Ok(())
-            });
-            summary.map(|summary| (columns, summary))
-        })
-        .map_err(raise)?;
+    let integrate = move || {
+        let mut columns = Columns::default();
+        let summary = inner.integrate(&problem, &method, &output, &mut |row| {
+            columns.t.push(row.t);
+            columns.q.extend_from_slice(row.q);
+            columns.p.extend_from_slice(row.p);
+            columns.energy.push(row.energy);
+            columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
+            columns.momentum_map.extend_from_slice(row.momentum_map);
+            Ok(())
+        });
+        summary.map(|summary| (columns, summary))
+    };
+    let (columns, summary) = interruptible(py, integrate)?.map_err(raise)?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
     let out = PyDict::new(py);
@@ -148,6 +150,42 @@ pub fn simulate<'py>(
     out.set_item("momentum_map", PyArray1::from_vec(py, columns.momentum_map).reshape([rows, n_g])?)?;
     out.set_item("summary", summary_dict(py, system, &summary)?)?;
     Ok(out)
+}
+
+/// How often the calling thread looks for Python signals (Ctrl-C) while a run integrates.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `work` on a worker thread with the GIL released, while the calling thread looks for Python
+/// signals every [`SIGNAL_POLL`]: a signal handler that raises (Ctrl-C's `KeyboardInterrupt`) asks the
+/// run to stop before its next step ([`ddirac::interrupt`]), and its exception is raised once the
+/// worker has stopped. Python runs signal handlers in the main thread only; a run started from
+/// another thread is not interrupted.
+pub(crate) fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    py.detach(|| {
+        std::thread::scope(|scope| {
+            let (done, finished) = mpsc::channel();
+            let worker = scope.spawn(move || {
+                let result = work();
+                let _ = done.send(());
+                result
+            });
+            let mut raised = None;
+            while let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(SIGNAL_POLL) {
+                if raised.is_none() {
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        ddirac::interrupt::request();
+                        raised = Some(e);
+                    }
+                }
+            }
+            let result = worker.join().map_err(|_| raise("the run's thread panicked"));
+            if let Some(e) = raised {
+                ddirac::interrupt::clear();
+                return Err(e);
+            }
+            result
+        })
+    })
 }
 
 /// The summary with the keys of `summary.json` that a run from Python has.
