@@ -10,11 +10,13 @@ Lagrange–Poincaré–Dirac equations, and the reconstruction of the group moti
     run.t, run.q, run.p, run.energy, run.discrete_energy, run.momentum_map   # NumPy arrays
     run.summary                                                              # the dict of summary.json
 
-Every error is a :class:`ddirac.Error` whose message names the argument and the cause.
+A spec file runs as ``ddirac run`` runs it: ``ddirac.load("spec.toml", overrides={"method.reduced":
+False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause.
 """
 
 from ._ddirac import Error, __version__
 from .system import System, builtin_systems
 from .run import Run, simulate
+from .spec import Spec, load
 
-__all__ = ["Error", "Run", "System", "builtin_systems", "simulate", "__version__"]
+__all__ = ["Error", "Run", "Spec", "System", "builtin_systems", "load", "simulate", "__version__"]

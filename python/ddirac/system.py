@@ -34,6 +34,12 @@ class System:
         )
 
     @classmethod
+    def _from_handle(cls, handle):
+        system = cls.__new__(cls)
+        system._handle = handle
+        return system
+
+    @classmethod
     def builtin(cls, name, **parameters):
         """The built-in system ``name`` with some parameters overridden, e.g.
         ``System.builtin("pendulum_chain", links=8)``."""

@@ -10,30 +10,11 @@
 //! ddirac bench [--only GROUP,...] [--rounds R] [--batch-ms MS] [--quick] [--json PATH]
 //! ```
 
-mod bench;
-mod check;
-mod compare;
-mod convergence;
-mod diagnostics;
-mod estimate;
-mod exact;
-mod lock;
-mod manifest;
-mod npy;
-mod output;
-mod overrides;
-mod plot;
-mod progress;
-mod report;
-mod run;
-mod run_dir;
-mod signals;
-mod spec;
-
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
+use ddirac_cli::{bench, check, compare, convergence, diagnostics, output, plot, run, signals};
 
 /// Structure-preserving integrators for Lagrangian systems with abelian symmetry, after
 /// "Discrete Dirac reduction of implicit Lagrangian systems with abelian symmetry groups".

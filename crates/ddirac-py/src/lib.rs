@@ -6,6 +6,7 @@
 
 mod error;
 mod simulate;
+mod spec;
 mod system;
 
 use pyo3::prelude::*;
@@ -19,6 +20,8 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(system::text_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_class::<spec::LoadedSpec>()?;
+    m.add_function(wrap_pyfunction!(spec::load_spec, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

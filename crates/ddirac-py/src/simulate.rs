@@ -123,6 +123,18 @@ pub fn simulate<'py>(
     }
     let problem = Problem::new(step, steps, q0, initial);
     let output = OutputOptions { every, wrap_angles };
+    run(py, system, problem, method, output)
+}
+
+/// Integrates `problem` for `system` with `method`, keeping the rows `output` asks for, into the dict
+/// [`simulate`] returns.
+pub(crate) fn run<'py>(
+    py: Python<'py>,
+    system: &SystemHandle,
+    problem: Problem,
+    method: Method,
+    output: OutputOptions,
+) -> PyResult<Bound<'py, PyDict>> {
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
     let integrate = move || {

@@ -1,0 +1,126 @@
+//! Spec files from Python: `ddirac.load(path, overrides)` reads and validates a spec as `ddirac run`
+//! does (the overrides are its `--set` assignments), and runs it into arrays or into an output
+//! directory.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use ddirac::{InitialMomentum, Method, OutputOptions, Problem};
+use ddirac_cli::diagnostics::CliError;
+use ddirac_cli::run::{self, Loaded, RunOptions};
+use miette::{GraphicalReportHandler, GraphicalTheme};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::raise;
+use crate::simulate::interruptible;
+use crate::system::SystemHandle;
+
+/// A command-line error as `ddirac.Error`, with the diagnostic `ddirac run` prints (the spec line
+/// underlined), without colours.
+fn cli_error(error: CliError) -> PyErr {
+    let report: miette::Report = error.into();
+    let mut text = String::new();
+    let handler = GraphicalReportHandler::new_themed(GraphicalTheme::unicode_nocolor()).with_width(100);
+    match handler.render_report(&mut text, report.as_ref()) {
+        Ok(()) => raise(text.trim_end()),
+        Err(_) => raise(report),
+    }
+}
+
+/// A validated spec.
+#[pyclass(module = "ddirac._ddirac", frozen)]
+pub struct LoadedSpec {
+    path: PathBuf,
+    set: Vec<String>,
+    system: Arc<dyn ddirac::DynSystem>,
+    #[pyo3(get)]
+    name: String,
+    #[pyo3(get)]
+    parameters: Vec<(String, f64)>,
+    problem: Problem,
+    method: Method,
+    output: OutputOptions,
+    /// Where `ddirac run` would write it.
+    #[pyo3(get)]
+    directory: PathBuf,
+}
+
+/// Reads the spec at `path` with the `--set` assignments `set`, as `ddirac run` does.
+#[pyfunction]
+pub fn load_spec(path: PathBuf, set: Vec<String>) -> PyResult<LoadedSpec> {
+    let Loaded { plan, .. } = run::load(&path, &set).map_err(cli_error)?;
+    let directory = run::output_dir(None, &plan, &path);
+    Ok(LoadedSpec {
+        path,
+        set,
+        system: Arc::from(plan.system),
+        name: plan.name,
+        parameters: plan.parameters,
+        problem: plan.problem,
+        method: plan.method,
+        output: plan.output,
+        directory,
+    })
+}
+
+#[pymethods]
+impl LoadedSpec {
+    /// The spec's system.
+    #[getter]
+    fn system(&self) -> SystemHandle {
+        SystemHandle { inner: self.system.clone(), name: self.name.clone(), parameters: self.parameters.clone() }
+    }
+
+    /// The time grid and initial data: (step, steps, q0, p0 or None, v0 or None).
+    #[allow(clippy::type_complexity)]
+    #[getter]
+    fn problem(&self) -> (f64, usize, Vec<f64>, Option<Vec<f64>>, Option<Vec<f64>>) {
+        let (p, v) = match &self.problem.initial {
+            InitialMomentum::Momentum(p) => (Some(p.clone()), None),
+            InitialMomentum::Velocity(v) => (None, Some(v.clone())),
+        };
+        (self.problem.step, self.problem.steps, self.problem.q0.clone(), p, v)
+    }
+
+    /// The method's keys as the spec's `[method]` table names them.
+    #[getter]
+    fn method<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let m = &self.method;
+        let d = PyDict::new(py);
+        d.set_item("rule", m.rule.name())?;
+        d.set_item("variant", m.variant.name())?;
+        d.set_item("reduced", m.reduced)?;
+        d.set_item("connection", m.connection.as_ref().map(ddirac::Connection::rows))?;
+        d.set_item("tolerance", m.newton.tolerance)?;
+        d.set_item("max_iterations", m.newton.max_iterations)?;
+        d.set_item("reuse_jacobian", m.newton.reuse_jacobian)?;
+        d.set_item("derivatives", m.differentiation.name())?;
+        d.set_item("check_invariance", m.check_invariance)?;
+        d.set_item("on_energy_jump", m.energy_jump.action.name())?;
+        d.set_item("energy_jump_threshold", m.energy_jump.threshold)?;
+        Ok(d)
+    }
+
+    /// Integrates the spec into arrays (the dict `ddirac.simulate` returns), writing no file.
+    fn run_arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let system = self.system();
+        crate::simulate::run(py, &system, self.problem.clone(), self.method.clone(), self.output)
+    }
+
+    /// Runs the spec as `ddirac run --quiet` does into `out` (default: the spec's directory) and
+    /// returns the directory.
+    #[pyo3(signature = (out=None))]
+    fn run_files(&self, py: Python<'_>, out: Option<PathBuf>) -> PyResult<PathBuf> {
+        let out = out.unwrap_or_else(|| self.directory.clone());
+        let options = RunOptions {
+            spec: self.path.clone(),
+            out: Some(out.clone()),
+            set: self.set.clone(),
+            quiet: true,
+            format: vec![],
+        };
+        interruptible(py, move || run::run(&options))?.map_err(cli_error)?;
+        Ok(out)
+    }
+}

@@ -1,0 +1,103 @@
+"""Spec files: :func:`load` reads a TOML spec as ``ddirac run`` does, with overrides as ``--set`` gives them."""
+
+import json
+import math
+import os
+
+import numpy as np
+
+from . import _ddirac
+
+
+def load(path, overrides=None):
+    """Reads and validates the spec at ``path``; ``overrides`` maps spec keys to values, as
+    ``--set KEY=VALUE`` does: ``ddirac.load("spec.toml", overrides={"method.reduced": False,
+    "time.steps": 1000, "initial.q.phi1": 2.0})``. Errors are :class:`ddirac.Error` with the
+    diagnostic the command line prints (the spec line underlined)."""
+    assignments = [f"{key}={_toml(value, key)}" for key, value in (overrides or {}).items()]
+    return Spec(_ddirac.load_spec(os.fspath(path), assignments), os.fspath(path))
+
+
+class Spec:
+    """A validated spec: its system, time grid, initial data and method; :meth:`run` integrates it."""
+
+    def __init__(self, handle, path):
+        from .system import System
+
+        self._handle = handle
+        self.path = path
+        self.system = System._from_handle(handle.system)
+        self.step, self.steps, q0, p0, v0 = handle.problem
+        self.q0 = np.array(q0)
+        self.p0 = None if p0 is None else np.array(p0)
+        self.v0 = None if v0 is None else np.array(v0)
+        self.method = handle.method
+
+    @property
+    def directory(self):
+        """Where ``ddirac run`` would write this spec's output."""
+        return os.fspath(self._handle.directory)
+
+    def run(self, out=None, write=None):
+        """Integrates the spec and returns a :class:`ddirac.Run`.
+
+        With ``out`` (a directory) or ``write=True`` (the spec's own directory) it also writes the files
+        ``ddirac run`` writes there (trajectory, ``summary.json``, figures as the spec asks), staged and
+        committed as a set, and the run's arrays are read back from them."""
+        from .run import Run
+
+        if out is None and not write:
+            return Run(self._handle.run_arrays(), self.system.coordinates, self.system.group)
+        directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
+        return _read_run(directory, self.system)
+
+    def __repr__(self):
+        return f"ddirac.Spec({self.path!r}, system={self.system.name!r}, steps={self.steps}, step={self.step})"
+
+
+def _read_run(directory, system):
+    """The arrays of a run directory (trajectory.csv, or npy/), as a Run."""
+    from .run import Run
+
+    with open(os.path.join(directory, "summary.json")) as f:
+        summary = json.load(f)
+    names = system.coordinates
+    csv = os.path.join(directory, "trajectory.csv")
+    if os.path.exists(csv):
+        data = np.genfromtxt(csv, delimiter=",", names=True, dtype=float, missing_values="", filling_values=np.nan)
+        column = lambda name: np.atleast_1d(data[name])  # noqa: E731
+    else:
+        column = lambda name: np.load(os.path.join(directory, "npy", f"{name}.npy"))  # noqa: E731
+    arrays = {
+        "t": column("t"),
+        "q": np.column_stack([column(n) for n in names]),
+        "p": np.column_stack([column(f"p_{n}") for n in names]),
+        "energy": column("energy"),
+        "discrete_energy": column("discrete_energy"),
+        "momentum_map": np.column_stack([column(f"momentum_{g}") for g in system.group])
+        if system.group else np.empty((len(column("t")), 0)),
+        "summary": summary,
+    }
+    return Run(arrays, names, system.group)
+
+
+def _toml(value, key):
+    """A Python value as a TOML value for ``--set``."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k} = {_toml(v, key)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml(v, key) for v in value) + "]"
+    raise _ddirac.Error(f"override `{key}`: a {type(value).__name__} is not a spec value")
