@@ -11,12 +11,17 @@ Lagrange–Poincaré–Dirac equations, and the reconstruction of the group moti
     run.summary                                                              # the dict of summary.json
 
 A spec file runs as ``ddirac run`` runs it: ``ddirac.load("spec.toml", overrides={"method.reduced":
-False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause.
+False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause;
+its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text``, ``span``),
+:class:`InvarianceError` and :class:`ConvergenceError` (``step``, ``t``, ``residual``) say more.
 """
 
-from ._ddirac import Error, __version__
+from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
 from .system import System, builtin_systems
 from .run import Run, simulate
 from .spec import Spec, load
 
-__all__ = ["Error", "Run", "Spec", "System", "builtin_systems", "load", "simulate", "__version__"]
+__all__ = [
+    "ConvergenceError", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError", "System",
+    "builtin_systems", "load", "simulate", "__version__",
+]

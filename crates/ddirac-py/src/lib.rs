@@ -14,7 +14,12 @@ use pyo3::prelude::*;
 /// The extension module.
 #[pymodule]
 fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("Error", m.py().get_type::<error::Error>())?;
+    let py = m.py();
+    m.add("Error", py.get_type::<error::Error>())?;
+    m.add("SpecError", py.get_type::<error::SpecError>())?;
+    m.add("ExpressionError", py.get_type::<error::ExpressionError>())?;
+    m.add("InvarianceError", py.get_type::<error::InvarianceError>())?;
+    m.add("ConvergenceError", py.get_type::<error::ConvergenceError>())?;
     m.add_class::<system::SystemHandle>()?;
     m.add_function(wrap_pyfunction!(system::builtin_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::text_system, m)?)?;

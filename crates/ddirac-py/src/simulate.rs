@@ -12,7 +12,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::error::raise;
+use crate::error::{engine, raise};
 use crate::system::SystemHandle;
 
 /// The method of a run from its keys, as a spec's `[method]` table gives them.
@@ -150,7 +150,7 @@ pub(crate) fn run<'py>(
         });
         summary.map(|summary| (columns, summary))
     };
-    let (columns, summary) = interruptible(py, integrate)?.map_err(raise)?;
+    let (columns, summary) = interruptible(py, integrate)?.map_err(engine)?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
     let out = PyDict::new(py);

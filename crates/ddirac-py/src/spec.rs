@@ -12,19 +12,23 @@ use miette::{GraphicalReportHandler, GraphicalTheme};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::error::raise;
+use crate::error::SpecError;
 use crate::simulate::interruptible;
 use crate::system::SystemHandle;
 
 /// A command-line error as `ddirac.Error`, with the diagnostic `ddirac run` prints (the spec line
 /// underlined), without colours.
 fn cli_error(error: CliError) -> PyErr {
+    let error = match error {
+        CliError::Integration(engine) => return crate::error::engine(engine),
+        other => other,
+    };
     let report: miette::Report = error.into();
     let mut text = String::new();
     let handler = GraphicalReportHandler::new_themed(GraphicalTheme::unicode_nocolor()).with_width(100);
     match handler.render_report(&mut text, report.as_ref()) {
-        Ok(()) => raise(text.trim_end()),
-        Err(_) => raise(report),
+        Ok(()) => SpecError::new_err(text.trim_end().to_owned()),
+        Err(_) => SpecError::new_err(report.to_string()),
     }
 }
 

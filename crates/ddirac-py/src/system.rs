@@ -50,7 +50,7 @@ pub fn builtin_system(name: &str, parameters: Vec<(String, f64)>) -> PyResult<Sy
         let known: Vec<&str> = defaults.iter().map(|(d, _)| *d).collect();
         return Err(raise(format!("`{name}` has no parameter `{unknown}`; its parameters are: {}", known.join(", "))));
     }
-    let inner = (builtin.build)(&parameters).map_err(raise)?;
+    let inner = (builtin.build)(&parameters).map_err(crate::error::engine)?;
     let mut all: Vec<(String, f64)> = defaults.iter().map(|(d, v)| ((*d).to_owned(), *v)).collect();
     for (p, v) in &parameters {
         if let Some(slot) = all.iter_mut().find(|(d, _)| d == p) {
@@ -120,8 +120,11 @@ pub fn text_system(
             }
         })
         .collect();
+    let mut sources = vec![("lagrangian".to_owned(), lagrangian.clone())];
+    sources.extend(definitions.iter().map(|(n, v)| (format!("definition:{n}"), v.clone())));
+    sources.extend(exact.iter().map(|(n, v)| (format!("exact:{n}"), v.clone())));
     let spec =
         ExpressionSpec { coordinates, lagrangian, definitions, parameters: parameters.clone(), exact_solution: exact };
-    let inner = spec.into_dyn().map_err(raise)?;
+    let inner = spec.into_dyn().map_err(|e| crate::error::expression(e, &sources))?;
     Ok(SystemHandle { inner: Arc::from(inner), name: name.unwrap_or_else(|| "custom".to_owned()), parameters })
 }
