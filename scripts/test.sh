@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 cargo test --workspace --release
 
-python3 -m pip install --quiet pytest numpy
+python3 -m pip install --quiet pytest numpy sympy
 python3 -m pip install --quiet .
 # From another directory, so that the installed package is imported, not `python/ddirac`.
 cd python/tests && python3 -m pytest -q

@@ -14,21 +14,29 @@ class System:
     coordinates are those the symmetry translates, and ``angles`` lists those on the circle.
     ``exact`` gives exact solutions by coordinate, as expressions in ``t`` and the parameters.
 
+    The Lagrangian, the definitions and the exact solutions may also be SymPy expressions: velocities
+    as symbols ``<name>_dot``, or ``sympy.physics.mechanics.dynamicsymbols`` and their first derivatives
+    (SymPy is imported only then).
+
     ``System.builtin(name, **parameters)`` is a built-in system (see :func:`builtin_systems`).
     """
 
     def __init__(self, lagrangian, shape=(), group=(), angles=(), definitions=None, parameters=None,
                  exact=None, order=None, name=None):
         if not isinstance(lagrangian, str):
-            raise _ddirac.Error(f"`lagrangian` must be a string, not {type(lagrangian).__name__}")
+            lagrangian = _from_sympy(lagrangian, list(shape) + list(group), "lagrangian")
+        definitions = {k: v if isinstance(v, str) else _from_sympy(v, list(shape) + list(group), f"definition `{k}`")
+                       for k, v in (definitions or {}).items()}
+        exact = {k: v if isinstance(v, str) else _from_sympy(v, [], f"exact solution of `{k}`")
+                 for k, v in (exact or {}).items()}
         self._handle = _ddirac.text_system(
             lagrangian,
             _names(shape, "shape"),
             _names(group, "group"),
             _names(angles, "angles"),
-            [(str(k), str(v)) for k, v in (definitions or {}).items()],
+            [(str(k), str(v)) for k, v in definitions.items()],
             [(str(k), _number(v, f"parameter `{k}`")) for k, v in (parameters or {}).items()],
-            [(str(k), str(v)) for k, v in (exact or {}).items()],
+            [(str(k), str(v)) for k, v in exact.items()],
             None if order is None else _names(order, "order"),
             name,
         )
@@ -85,6 +93,18 @@ class System:
 def builtin_systems():
     """The built-in systems: name → one-line description."""
     return dict(_ddirac.builtin_names())
+
+
+def _from_sympy(expression, coordinates, what):
+    """The text of a SymPy expression; SymPy is imported only here."""
+    if not type(expression).__module__.startswith("sympy"):
+        raise _ddirac.Error(f"the {what} must be a string or a SymPy expression, not {type(expression).__name__}")
+    from .sympy_text import to_text
+
+    try:
+        return to_text(expression, [str(c) for c in coordinates])
+    except ValueError as e:
+        raise _ddirac.ExpressionError(f"the {what}: {e}") from None
 
 
 def _names(values, what):
