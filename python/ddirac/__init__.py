@@ -18,10 +18,10 @@ its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text`
 
 from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
 from .system import System, builtin_systems
-from .run import Run, simulate
+from .run import Run, check, simulate
 from .spec import Spec, load
 
 __all__ = [
     "ConvergenceError", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError", "System",
-    "builtin_systems", "load", "simulate", "__version__",
+    "builtin_systems", "check", "load", "simulate", "__version__",
 ]

@@ -83,6 +83,26 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
 
     The GIL is released while the run integrates.
     """
+    q0, p0, v0, h, n, keys = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
+    every = _count(every, "every")
+    arrays = _ddirac.simulate(system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), keys)
+    names = system.coordinates
+    return Run(arrays, names, system.group)
+
+
+def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint", variant="plus",
+          reduced=False, **method):
+    """Tests the hypotheses a run of :func:`simulate` with the same arguments would rest on, without
+    integrating: the invariance of L_d under each group translation (reduced runs), the
+    2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map and the
+    primary constraint. Returns the findings as a dict, with ``verdict``: whether such a run would
+    go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with."""
+    q0, p0, v0, h, n, keys = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
+    return _ddirac.check(system._handle, q0, p0, v0, h, n, keys)
+
+
+def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method):
+    """The arguments of a run, checked and in the module's types."""
     from .system import System
 
     if not isinstance(system, System):
@@ -99,22 +119,23 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     p0 = None if p0 is None else _vector(p0, names, "p0")
     v0 = None if v0 is None else _vector(v0, names, "v0")
     h, n = _grid(step, steps, duration)
-    every = _count(every, "every")
     connection = keys["connection"]
     if connection is not None:
         connection = [[float(x) for x in row] for row in np.atleast_2d(np.asarray(connection, dtype=float))]
-    arrays = _ddirac.simulate(
-        system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), str(rule), str(variant), bool(reduced),
-        connection,
-        None if keys["tolerance"] is None else float(keys["tolerance"]),
-        None if keys["max_iterations"] is None else _count(keys["max_iterations"], "max_iterations"),
-        None if keys["reuse_jacobian"] is None else bool(keys["reuse_jacobian"]),
-        str(keys["derivatives"]),
-        bool(keys["check_invariance"]),
-        str(keys["on_energy_jump"]),
-        None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
-    )
-    return Run(arrays, names, system.group)
+    keys = {
+        "rule": str(rule),
+        "variant": str(variant),
+        "reduced": bool(reduced),
+        "connection": connection,
+        "tolerance": None if keys["tolerance"] is None else float(keys["tolerance"]),
+        "max_iterations": None if keys["max_iterations"] is None else _count(keys["max_iterations"], "max_iterations"),
+        "reuse_jacobian": None if keys["reuse_jacobian"] is None else bool(keys["reuse_jacobian"]),
+        "derivatives": str(keys["derivatives"]),
+        "check_invariance": bool(keys["check_invariance"]),
+        "on_energy_jump": str(keys["on_energy_jump"]),
+        "energy_jump_threshold": None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
+    }
+    return q0, p0, v0, h, n, keys
 
 
 def _vector(values, names, what):

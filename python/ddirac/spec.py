@@ -51,6 +51,15 @@ class Spec:
         directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
         return _read_run(directory, self.system)
 
+    def check(self):
+        """:func:`ddirac.check` of this spec's system, initial data, time grid and method."""
+        from .run import check
+
+        method = {k: v for k, v in self.method.items() if k not in ("rule", "variant", "reduced")}
+        return check(self.system, self.q0, p0=self.p0, v0=self.v0, step=self.step, steps=self.steps,
+                     rule=self.method["rule"], variant=self.method["variant"], reduced=self.method["reduced"],
+                     **method)
+
     def __repr__(self):
         return f"ddirac.Spec({self.path!r}, system={self.system.name!r}, steps={self.steps}, step={self.step})"
 

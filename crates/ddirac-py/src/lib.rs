@@ -4,6 +4,7 @@
 //! Python package shapes the public API on top (`ddirac.System`, `ddirac.simulate`, `ddirac.Error`).
 //! Integration runs with the GIL released.
 
+mod check;
 mod error;
 mod simulate;
 mod spec;
@@ -25,6 +26,7 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(system::text_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(check::check, m)?)?;
     m.add_class::<spec::LoadedSpec>()?;
     m.add_function(wrap_pyfunction!(spec::load_spec, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -15,47 +15,71 @@ use pyo3::types::{PyDict, PyList};
 use crate::error::{engine, raise};
 use crate::system::SystemHandle;
 
-/// The method of a run from its keys, as a spec's `[method]` table gives them.
-#[allow(clippy::too_many_arguments)]
-fn method(
-    rule: &str,
-    variant: &str,
+/// The method keys of a run, as a spec's `[method]` table names them (a dict from Python).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub(crate) struct MethodKeys {
+    rule: String,
+    variant: String,
     reduced: bool,
     connection: Option<Vec<Vec<f64>>>,
     tolerance: Option<f64>,
     max_iterations: Option<usize>,
     reuse_jacobian: Option<bool>,
-    derivatives: &str,
+    derivatives: String,
     check_invariance: bool,
-    on_energy_jump: &str,
+    on_energy_jump: String,
     energy_jump_threshold: Option<f64>,
-) -> PyResult<Method> {
-    let one_of = |key: &str, value: &str, names: &[&str]| {
-        raise(format!("`{key}` = {value:?} is not one of: {}", names.join(", ")))
-    };
-    let rule = Rule::from_name(rule).ok_or_else(|| one_of("rule", rule, &Rule::ALL.map(Rule::name)))?;
-    let variant = match variant {
-        "plus" => Variant::Plus,
-        "minus" => Variant::Minus,
-        other => return Err(one_of("variant", other, &["plus", "minus"])),
-    };
-    let differentiation = Differentiation::from_name(derivatives)
-        .ok_or_else(|| one_of("derivatives", derivatives, &Differentiation::ALL.map(Differentiation::name)))?;
-    let action = JumpAction::from_name(on_energy_jump)
-        .ok_or_else(|| one_of("on_energy_jump", on_energy_jump, &JumpAction::ALL.map(JumpAction::name)))?;
-    let defaults = NewtonOptions::default();
-    let newton = NewtonOptions {
-        tolerance: tolerance.unwrap_or(defaults.tolerance),
-        max_iterations: max_iterations.unwrap_or(defaults.max_iterations),
-        reuse_jacobian: reuse_jacobian.unwrap_or(defaults.reuse_jacobian),
-    };
-    if !(newton.tolerance.is_finite() && newton.tolerance > 0.0) {
-        return Err(raise(format!("`tolerance` = {} must be a positive number", newton.tolerance)));
+}
+
+impl MethodKeys {
+    /// The method, or an error naming the key that is wrong.
+    pub(crate) fn method(self) -> PyResult<Method> {
+        let one_of = |key: &str, value: &str, names: &[&str]| {
+            raise(format!("`{key}` = {value:?} is not one of: {}", names.join(", ")))
+        };
+        let rule = Rule::from_name(&self.rule).ok_or_else(|| one_of("rule", &self.rule, &Rule::ALL.map(Rule::name)))?;
+        let variant = match self.variant.as_str() {
+            "plus" => Variant::Plus,
+            "minus" => Variant::Minus,
+            other => return Err(one_of("variant", other, &["plus", "minus"])),
+        };
+        let differentiation = Differentiation::from_name(&self.derivatives).ok_or_else(|| {
+            one_of("derivatives", &self.derivatives, &Differentiation::ALL.map(Differentiation::name))
+        })?;
+        let action = JumpAction::from_name(&self.on_energy_jump)
+            .ok_or_else(|| one_of("on_energy_jump", &self.on_energy_jump, &JumpAction::ALL.map(JumpAction::name)))?;
+        let defaults = NewtonOptions::default();
+        let newton = NewtonOptions {
+            tolerance: self.tolerance.unwrap_or(defaults.tolerance),
+            max_iterations: self.max_iterations.unwrap_or(defaults.max_iterations),
+            reuse_jacobian: self.reuse_jacobian.unwrap_or(defaults.reuse_jacobian),
+        };
+        if !(newton.tolerance.is_finite() && newton.tolerance > 0.0) {
+            return Err(raise(format!("`tolerance` = {} must be a positive number", newton.tolerance)));
+        }
+        let connection = self.connection.map(|rows| Connection::new(&rows)).transpose().map_err(raise)?;
+        let threshold = self.energy_jump_threshold.unwrap_or(EnergyJump::default().threshold);
+        let energy_jump = EnergyJump { threshold, action };
+        let (reduced, check_invariance) = (self.reduced, self.check_invariance);
+        Ok(Method { rule, variant, reduced, connection, newton, check_invariance, differentiation, energy_jump })
     }
-    let connection = connection.map(|rows| Connection::new(&rows)).transpose().map_err(raise)?;
-    let energy_jump =
-        EnergyJump { threshold: energy_jump_threshold.unwrap_or(EnergyJump::default().threshold), action };
-    Ok(Method { rule, variant, reduced, connection, newton, check_invariance, differentiation, energy_jump })
+}
+
+/// The problem from the time grid and the initial data (exactly one of `p0` and `v0`).
+pub(crate) fn problem(
+    q0: Vec<f64>,
+    p0: Option<Vec<f64>>,
+    v0: Option<Vec<f64>>,
+    step: f64,
+    steps: usize,
+) -> PyResult<Problem> {
+    let initial = match (p0, v0) {
+        (Some(p), None) => InitialMomentum::Momentum(p),
+        (None, Some(v)) => InitialMomentum::Velocity(v),
+        _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
+    };
+    Ok(Problem::new(step, steps, q0, initial))
 }
 
 /// The rows of a run, gathered column by column.
@@ -69,14 +93,11 @@ struct Columns {
     momentum_map: Vec<f64>,
 }
 
-/// Integrates `system` from (q0, p0 or v0) for `steps` steps of `step`; returns a dict of NumPy
-/// arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with NaN on the last row,
-/// `momentum_map` of shape (rows, n_g)) and the `summary` dict.
+/// Integrates `system` from (q0, p0 or v0) for `steps` steps of `step` with the `method` keys;
+/// returns a dict of NumPy arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with
+/// NaN on the last row, `momentum_map` of shape (rows, n_g)) and the `summary` dict.
 #[pyfunction]
-#[pyo3(signature = (
-    system, q0, p0, v0, step, steps, every, wrap_angles, rule, variant, reduced, connection, tolerance,
-    max_iterations, reuse_jacobian, derivatives, check_invariance, on_energy_jump, energy_jump_threshold
-))]
+#[pyo3(signature = (system, q0, p0, v0, step, steps, every, wrap_angles, method))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -88,42 +109,14 @@ pub fn simulate<'py>(
     steps: usize,
     every: usize,
     wrap_angles: bool,
-    rule: &str,
-    variant: &str,
-    reduced: bool,
-    connection: Option<Vec<Vec<f64>>>,
-    tolerance: Option<f64>,
-    max_iterations: Option<usize>,
-    reuse_jacobian: Option<bool>,
-    derivatives: &str,
-    check_invariance: bool,
-    on_energy_jump: &str,
-    energy_jump_threshold: Option<f64>,
+    method: MethodKeys,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = method(
-        rule,
-        variant,
-        reduced,
-        connection,
-        tolerance,
-        max_iterations,
-        reuse_jacobian,
-        derivatives,
-        check_invariance,
-        on_energy_jump,
-        energy_jump_threshold,
-    )?;
-    let initial = match (p0, v0) {
-        (Some(p), None) => InitialMomentum::Momentum(p),
-        (None, Some(v)) => InitialMomentum::Velocity(v),
-        _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
-    };
+    let method = method.method()?;
+    let problem = problem(q0, p0, v0, step, steps)?;
     if every == 0 {
         return Err(raise("`every` must be at least 1"));
     }
-    let problem = Problem::new(step, steps, q0, initial);
-    let output = OutputOptions { every, wrap_angles };
-    run(py, system, problem, method, output)
+    run(py, system, problem, method, OutputOptions { every, wrap_angles })
 }
 
 /// Integrates `problem` for `system` with `method`, keeping the rows `output` asks for, into the dict

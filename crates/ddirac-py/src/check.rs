@@ -1,0 +1,76 @@
+//! `ddirac.check`: the hypotheses of a run tested without integrating, as data, and the verdict a run
+//! would give (paper §4: invariance; §6: periodicity of angles; the Legendre map and the primary
+//! constraint of a degenerate Lagrangian).
+
+use ddirac::{CheckReport, Finding};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::error::engine;
+use crate::simulate::{problem, MethodKeys};
+use crate::system::SystemHandle;
+
+fn findings<'py>(py: Python<'py>, findings: &[Finding], tolerance: f64) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for f in findings {
+        let d = PyDict::new(py);
+        d.set_item("coordinate", &f.coordinate)?;
+        d.set_item("deviation", f.deviation)?;
+        d.set_item("samples", f.samples)?;
+        d.set_item("decided", f.decided())?;
+        d.set_item("holds", f.holds(tolerance))?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// Tests the hypotheses of a run of `system` from (q0, p0 or v0) with the `method` keys near the
+/// initial data; returns the findings and the verdict (`runs`, and the `error` a run would fail with
+/// or the `warnings` it would run with).
+#[pyfunction]
+#[pyo3(signature = (system, q0, p0, v0, step, steps, method))]
+#[allow(clippy::too_many_arguments)]
+pub fn check<'py>(
+    py: Python<'py>,
+    system: &SystemHandle,
+    q0: Vec<f64>,
+    p0: Option<Vec<f64>>,
+    v0: Option<Vec<f64>>,
+    step: f64,
+    steps: usize,
+    method: MethodKeys,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = method.method()?;
+    let problem = problem(q0, p0, v0, step, steps)?;
+    let inner = system.inner.clone();
+    let checked = method.clone();
+    let report: CheckReport = py.detach(move || inner.check(&problem, &checked)).map_err(engine)?;
+    let d = PyDict::new(py);
+    d.set_item("invariance", findings(py, &report.invariance, report.invariance_tolerance)?)?;
+    d.set_item("invariance_tolerance", report.invariance_tolerance)?;
+    d.set_item("invariant", report.invariant())?;
+    d.set_item("periodicity", findings(py, &report.periodicity, report.periodicity_tolerance)?)?;
+    d.set_item("periodicity_tolerance", report.periodicity_tolerance)?;
+    d.set_item("periodic", report.periodic())?;
+    d.set_item("connection_axioms", report.connection_axioms)?;
+    d.set_item("legendre_rank", report.legendre_rank)?;
+    d.set_item("coordinates", report.coordinates)?;
+    d.set_item("regular", report.regular())?;
+    d.set_item("constraint_mismatch", report.constraint_mismatch)?;
+    d.set_item("momentum_consistent", report.momentum_consistent())?;
+    let verdict = PyDict::new(py);
+    match report.verdict(&method) {
+        Ok(warnings) => {
+            verdict.set_item("runs", true)?;
+            verdict.set_item("error", py.None())?;
+            verdict.set_item("warnings", warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>())?;
+        }
+        Err(e) => {
+            verdict.set_item("runs", false)?;
+            verdict.set_item("error", e.to_string())?;
+            verdict.set_item("warnings", Vec::<String>::new())?;
+        }
+    }
+    d.set_item("verdict", verdict)?;
+    Ok(d)
+}
