@@ -6,6 +6,7 @@
 
 mod check;
 mod error;
+mod overhead;
 mod simulate;
 mod spec;
 mod system;
@@ -27,6 +28,7 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
+    m.add_function(wrap_pyfunction!(overhead::rust_seconds, m)?)?;
     m.add_class::<spec::LoadedSpec>()?;
     m.add_function(wrap_pyfunction!(spec::load_spec, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -82,9 +82,30 @@ pub(crate) fn problem(
     Ok(Problem::new(step, steps, q0, initial))
 }
 
+/// Integrates and gathers the rows column by column: the whole work of a run from Python but the
+/// arrays' hand-over.
+pub(crate) fn collect(
+    system: &dyn ddirac::DynSystem,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+) -> Result<(Columns, ddirac::Summary), ddirac::Error> {
+    let mut columns = Columns::default();
+    let summary = system.integrate(problem, method, output, &mut |row| {
+        columns.t.push(row.t);
+        columns.q.extend_from_slice(row.q);
+        columns.p.extend_from_slice(row.p);
+        columns.energy.push(row.energy);
+        columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
+        columns.momentum_map.extend_from_slice(row.momentum_map);
+        Ok(())
+    })?;
+    Ok((columns, summary))
+}
+
 /// The rows of a run, gathered column by column.
 #[derive(Default)]
-struct Columns {
+pub(crate) struct Columns {
     t: Vec<f64>,
     q: Vec<f64>,
     p: Vec<f64>,
@@ -130,19 +151,7 @@ pub(crate) fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
-    let integrate = move || {
-        let mut columns = Columns::default();
-        let summary = inner.integrate(&problem, &method, &output, &mut |row| {
-            columns.t.push(row.t);
-            columns.q.extend_from_slice(row.q);
-            columns.p.extend_from_slice(row.p);
-            columns.energy.push(row.energy);
-            columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
-            columns.momentum_map.extend_from_slice(row.momentum_map);
-            Ok(())
-        });
-        summary.map(|summary| (columns, summary))
-    };
+    let integrate = move || collect(inner.as_ref(), &problem, &method, &output);
     let (columns, summary) = interruptible(py, integrate)?.map_err(engine)?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
@@ -165,31 +174,37 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 /// run to stop before its next step ([`ddirac::interrupt`]), and its exception is raised once the
 /// worker has stopped. Python runs signal handlers in the main thread only; a run started from
 /// another thread is not interrupted.
-pub(crate) fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+pub(crate) fn interruptible<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
     py.detach(|| {
-        std::thread::scope(|scope| {
-            let (done, finished) = mpsc::channel();
-            let worker = scope.spawn(move || {
-                let result = work();
-                let _ = done.send(());
-                result
-            });
-            let mut raised = None;
-            while let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(SIGNAL_POLL) {
-                if raised.is_none() {
-                    if let Err(e) = Python::attach(|py| py.check_signals()) {
-                        ddirac::interrupt::request();
-                        raised = Some(e);
+        let (done, finished) = mpsc::channel();
+        // A pooled thread: spawning one per run cost tens of microseconds of a short run's call.
+        rayon::spawn(move || {
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work));
+            let _ = done.send(result);
+        });
+        let mut raised = None;
+        let result = loop {
+            match finished.recv_timeout(SIGNAL_POLL) {
+                Ok(result) => break result.map_err(|_| raise("the run's thread panicked")),
+                Err(RecvTimeoutError::Disconnected) => break Err(raise("the run's thread stopped without a result")),
+                Err(RecvTimeoutError::Timeout) => {
+                    if raised.is_none() {
+                        if let Err(e) = Python::attach(|py| py.check_signals()) {
+                            ddirac::interrupt::request();
+                            raised = Some(e);
+                        }
                     }
                 }
             }
-            let result = worker.join().map_err(|_| raise("the run's thread panicked"));
-            if let Some(e) = raised {
-                ddirac::interrupt::clear();
-                return Err(e);
-            }
-            result
-        })
+        };
+        if let Some(e) = raised {
+            ddirac::interrupt::clear();
+            return Err(e);
+        }
+        result
     })
 }
 
