@@ -30,7 +30,7 @@ pub fn rust_seconds(
     let inner = system.inner.clone();
     py.detach(move || {
         let start = Instant::now();
-        let run = collect(inner.as_ref(), &problem, &method, &OutputOptions::default());
+        let run = collect(inner.as_ref(), &problem, &method, &OutputOptions::default(), &mut |_| Ok(()));
         let seconds = start.elapsed().as_secs_f64();
         run.map(|run| {
             std::hint::black_box(run);

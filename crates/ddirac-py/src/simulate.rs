@@ -6,7 +6,7 @@ use ddirac::{
     Problem, Rule, Summary, Variant,
 };
 use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -89,9 +89,10 @@ pub(crate) fn collect(
     problem: &Problem,
     method: &Method,
     output: &OutputOptions,
+    watch: &mut dyn FnMut(usize) -> Result<(), ddirac::OutputError>,
 ) -> Result<(Columns, ddirac::Summary), ddirac::Error> {
     let mut columns = Columns::default();
-    let summary = system.integrate(problem, method, output, &mut |row| {
+    let observer = &mut |row: &ddirac::Row<'_>| -> Result<(), ddirac::OutputError> {
         columns.t.push(row.t);
         columns.q.extend_from_slice(row.q);
         columns.p.extend_from_slice(row.p);
@@ -99,8 +100,51 @@ pub(crate) fn collect(
         columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
         columns.momentum_map.extend_from_slice(row.momentum_map);
         Ok(())
-    })?;
+    };
+    let summary = system.integrate_watched(problem, method, output, observer, watch)?;
     Ok((columns, summary))
+}
+
+/// The watch's message when a Python signal handler raised: the run stopped for it.
+#[derive(Debug)]
+struct SignalRaised;
+
+impl std::fmt::Display for SignalRaised {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a Python signal handler raised")
+    }
+}
+
+impl std::error::Error for SignalRaised {}
+
+/// Runs `work` on the calling thread with the GIL released, handing it a watch for the engine's
+/// step loop ([`ddirac::integrate_watched`]) that runs Python's signal handlers every
+/// [`SIGNAL_POLL`]: a handler that raises (Ctrl-C's `KeyboardInterrupt`) stops the run before its next
+/// step, and its exception is raised. Python runs signal handlers in the main thread only; a run
+/// started from another thread is not interrupted.
+pub(crate) fn watched<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&mut dyn FnMut(usize) -> Result<(), ddirac::OutputError>) -> Result<T, ddirac::Error> + Send,
+) -> PyResult<T> {
+    let mut raised: Option<PyErr> = None;
+    let result = py.detach(|| {
+        let mut last = Instant::now();
+        let mut watch = |_k: usize| -> Result<(), ddirac::OutputError> {
+            if last.elapsed() < SIGNAL_POLL {
+                return Ok(());
+            }
+            last = Instant::now();
+            Python::attach(|py| py.check_signals()).map_err(|e| {
+                raised = Some(e);
+                Box::new(SignalRaised) as ddirac::OutputError
+            })
+        };
+        work(&mut watch)
+    });
+    match (raised, result) {
+        (Some(e), _) => Err(e),
+        (None, result) => result.map_err(engine),
+    }
 }
 
 /// The rows of a run, gathered column by column.
@@ -151,8 +195,7 @@ pub(crate) fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
-    let integrate = move || collect(inner.as_ref(), &problem, &method, &output);
-    let (columns, summary) = interruptible(py, integrate)?.map_err(engine)?;
+    let (columns, summary) = watched(py, |watch| collect(inner.as_ref(), &problem, &method, &output, watch))?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
     let out = PyDict::new(py);
@@ -169,7 +212,8 @@ pub(crate) fn run<'py>(
 /// How often the calling thread looks for Python signals (Ctrl-C) while a run integrates.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-/// Runs `work` on a worker thread with the GIL released, while the calling thread looks for Python
+/// Runs `work` (a run of the command line's machinery, which has no watch) on a pooled thread with the
+/// GIL released, while the calling thread looks for Python
 /// signals every [`SIGNAL_POLL`]: a signal handler that raises (Ctrl-C's `KeyboardInterrupt`) asks the
 /// run to stop before its next step ([`ddirac::interrupt`]), and its exception is raised once the
 /// worker has stopped. Python runs signal handlers in the main thread only; a run started from

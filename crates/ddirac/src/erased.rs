@@ -24,6 +24,17 @@ pub trait DynSystem: Send + Sync {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error>;
 
+    /// Runs a problem, calling `watch` every [`crate::WATCH_STEPS`] steps; see
+    /// [`crate::integrate_watched`].
+    fn integrate_watched(
+        &self,
+        problem: &Problem,
+        method: &Method,
+        output: &OutputOptions,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<Summary, Error>;
+
     /// Checks a problem without integrating; see [`crate::check`].
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error>;
 
@@ -64,6 +75,17 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
         crate::integrate(&self.0, problem, method, output, observer)
+    }
+
+    fn integrate_watched(
+        &self,
+        problem: &Problem,
+        method: &Method,
+        output: &OutputOptions,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<Summary, Error> {
+        crate::integrate_watched(&self.0, problem, method, output, observer, watch)
     }
 
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {

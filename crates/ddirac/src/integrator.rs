@@ -35,9 +35,41 @@ pub fn integrate<S: System<N>, const N: usize>(
     if output.every == 0 {
         return Err(Error::Invalid { what: Input::Every, why: "must be at least 1".into() });
     }
+    integrate_watched(system, problem, method, output, observer, &mut |_| Ok(()))
+}
+
+/// How many steps a run takes between two calls of the watch of [`integrate_watched`]: a call every 64
+/// steps costs nothing measurable, and 64 of the slowest steps the engine takes (a few milliseconds,
+/// a chain of 50 pendula with dual numbers) are a fraction of a second.
+pub const WATCH_STEPS: usize = 64;
+
+/// [`integrate`], calling `watch(k)` before step k every [`WATCH_STEPS`] steps (and before the
+/// first): a caller that must look at something while a run goes on (Python's signal handlers) does
+/// it there; an error from it stops the run with [`Error::Output`] as an observer's does.
+///
+/// ```
+/// use ddirac::{integrate_watched, systems::ChargedParticle, Method, OutputOptions, WATCH_STEPS};
+/// let (system, problem) = (ChargedParticle::default(), ChargedParticle::paper_problem(150));
+/// let mut watched = vec![];
+/// let mut watch = |k: usize| -> Result<(), ddirac::OutputError> { watched.push(k); Ok(()) };
+/// integrate_watched(&system, &problem, &Method::default(), &OutputOptions::default(), &mut |_| Ok(()), &mut watch)
+///     .unwrap();
+/// assert_eq!(watched, [0, WATCH_STEPS, 2 * WATCH_STEPS]);
+/// ```
+pub fn integrate_watched<S: System<N>, const N: usize>(
+    system: &S,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+    observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+    watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+) -> Result<Summary, Error> {
+    if output.every == 0 {
+        return Err(Error::Invalid { what: Input::Every, why: "must be at least 1".into() });
+    }
     let mut stepper = Stepper::new(system, problem, method)?;
     stepper.set_wrap_angles(output.wrap_angles);
-    stepper.run_to_end(output.every, observer)?;
+    stepper.run_to_end(output.every, observer, watch)?;
     stepper.finish()
 }
 

@@ -52,7 +52,7 @@ pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, Wa
 pub use energy_jump::{EnergyJump, JumpAction};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased};
 pub use error::{Error, Hypothesis, Input, Time};
-pub use integrator::{integrate, solve, OutputError};
+pub use integrator::{integrate, integrate_watched, solve, OutputError, WATCH_STEPS};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;
 /// The scalar trait user Lagrangians are written against (`DualNum<Primitive = f64>`), re-exported so that

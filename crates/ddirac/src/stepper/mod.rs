@@ -289,14 +289,21 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         &mut self,
         every: usize,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
     ) -> Result<(), Error> {
         let (context, progress) = (&self.context, &mut self.progress);
         equipped!(&self.schemes, e => {
             let mut until_report = 0;
+            let mut until_watch = 0;
             while progress.k < context.steps {
                 if crate::interrupt::requested() {
                     return Err(Error::Interrupted { step: progress.k, t: progress.k as f64 * context.h });
                 }
+                if until_watch == 0 {
+                    watch(progress.k).map_err(Error::Output)?;
+                    until_watch = crate::integrator::WATCH_STEPS;
+                }
+                until_watch -= 1;
                 // The row of step k carries L_d(q_k, q_{k+1}): it is taken before the step, reported
                 // after it.
                 let row = (until_report == 0).then(|| progress.row(&e.scheme, context));
