@@ -18,10 +18,11 @@ its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text`
 
 from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
 from .system import System, builtin_systems
+from .convergence import convergence
 from .run import Run, check, simulate
 from .spec import Spec, load
 
 __all__ = [
     "ConvergenceError", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError", "System",
-    "builtin_systems", "check", "load", "simulate", "__version__",
+    "builtin_systems", "check", "convergence", "load", "simulate", "__version__",
 ]

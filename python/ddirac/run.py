@@ -61,6 +61,24 @@ class Run:
         out.update({f"momentum_{name}": self.momentum_map[:, i] for i, name in enumerate(self.group)})
         return out
 
+    def to_xarray(self):
+        """The run as an ``xarray.Dataset`` over ``t`` (xarray is imported only here): ``q`` and ``p`` with a
+        ``coordinate`` dimension, ``momentum_map`` with a ``group`` dimension, ``energy``,
+        ``discrete_energy``; the summary in ``attrs["summary"]``."""
+        import xarray
+
+        return xarray.Dataset(
+            {
+                "q": (("t", "coordinate"), self.q),
+                "p": (("t", "coordinate"), self.p),
+                "energy": ("t", self.energy),
+                "discrete_energy": ("t", self.discrete_energy),
+                "momentum_map": (("t", "group"), self.momentum_map),
+            },
+            coords={"t": self.t, "coordinate": self.coordinates, "group": self.group},
+            attrs={"summary": self.summary},
+        )
+
     def to_pandas(self):
         """The named columns as a ``pandas.DataFrame`` (pandas is imported only here)."""
         import pandas

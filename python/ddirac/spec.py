@@ -60,6 +60,13 @@ class Spec:
                      rule=self.method["rule"], variant=self.method["variant"], reduced=self.method["reduced"],
                      **method)
 
+    def convergence(self, steps):
+        """:func:`ddirac.convergence` of this spec over its duration with the step counts ``steps``."""
+        from .convergence import convergence
+
+        method = dict(self.method)
+        return convergence(self.system, steps, self.step * self.steps, self.q0, p0=self.p0, v0=self.v0, **method)
+
     def __repr__(self):
         return f"ddirac.Spec({self.path!r}, system={self.system.name!r}, steps={self.steps}, step={self.step})"
 

@@ -50,7 +50,13 @@ def test_arrays_have_one_row_per_kept_step_and_named_columns():
     run = ddirac.simulate(oscillator(), q0={"x": 1.0}, p0={"x": 0.0}, step=0.01, steps=100, every=7)
     rows = 100 // 7 + 2  # every 7th step from 0, and the last
     assert run.q.shape == (rows, 1) and run.p.shape == (rows, 1) and run.t.shape == (rows,)
-    assert run.q.dtype == np.float64 and run.q.flags["C_CONTIGUOUS"]
+    assert run.q.dtype == np.float64 and run.q.flags["C_CONTIGUOUS"] and run.q.flags["WRITEABLE"]
+    # The arrays are the engine's buffers handed over, not copies: q is a (rows, n) view of the 1-D array
+    # made on the buffer, whose memory the Rust vector (a capsule, not another array) keeps alive.
+    owner = run.q.base
+    assert isinstance(owner, np.ndarray) and owner.ndim == 1 and not isinstance(owner.base, np.ndarray)
+    assert np.shares_memory(run.q, owner)
+    run.q[0, 0] = 42.0  # writable, and the run's own
     assert run.t[-1] == pytest.approx(1.0) and np.isnan(run.discrete_energy[-1])
     assert not np.isnan(run.discrete_energy[:-1]).any()
     assert run.momentum_map.shape == (rows, 0)

@@ -1,0 +1,84 @@
+"""Type stubs of the extension module (the package's public API is in its Python modules)."""
+
+from os import PathLike
+from typing import Any, Optional, Sequence
+
+__version__: str
+
+class Error(Exception): ...
+class SpecError(Error): ...
+
+class ExpressionError(Error):
+    origin: Optional[str]
+    text: Optional[str]
+    span: Optional[tuple[int, int]]
+
+class InvarianceError(Error): ...
+
+class ConvergenceError(Error):
+    step: int
+    t: float
+    residual: Optional[float]
+
+class SystemHandle:
+    name: str
+    parameters: list[tuple[str, float]]
+    @property
+    def coordinates(self) -> list[tuple[str, str, str]]: ...
+
+class LoadedSpec:
+    name: str
+    parameters: list[tuple[str, float]]
+    directory: PathLike[str]
+    @property
+    def system(self) -> SystemHandle: ...
+    @property
+    def problem(self) -> tuple[float, int, list[float], Optional[list[float]], Optional[list[float]]]: ...
+    @property
+    def method(self) -> dict[str, Any]: ...
+    def run_arrays(self) -> dict[str, Any]: ...
+    def run_files(self, out: Optional[str] = None) -> PathLike[str]: ...
+
+def builtin_system(name: str, parameters: Sequence[tuple[str, float]]) -> SystemHandle: ...
+def builtin_names() -> list[tuple[str, str]]: ...
+def text_system(
+    lagrangian: str,
+    shape: Sequence[str],
+    group: Sequence[str],
+    angles: Sequence[str],
+    definitions: Sequence[tuple[str, str]],
+    parameters: Sequence[tuple[str, float]],
+    exact: Sequence[tuple[str, str]],
+    order: Optional[Sequence[str]] = None,
+    name: Optional[str] = None,
+) -> SystemHandle: ...
+def simulate(
+    system: SystemHandle,
+    q0: Sequence[float],
+    p0: Optional[Sequence[float]],
+    v0: Optional[Sequence[float]],
+    step: float,
+    steps: int,
+    every: int,
+    wrap_angles: bool,
+    method: dict[str, Any],
+) -> dict[str, Any]: ...
+def check(
+    system: SystemHandle,
+    q0: Sequence[float],
+    p0: Optional[Sequence[float]],
+    v0: Optional[Sequence[float]],
+    step: float,
+    steps: int,
+    method: dict[str, Any],
+) -> dict[str, Any]: ...
+def rust_seconds(
+    system: SystemHandle,
+    q0: Sequence[float],
+    p0: Optional[Sequence[float]],
+    v0: Optional[Sequence[float]],
+    step: float,
+    steps: int,
+    method: dict[str, Any],
+) -> float: ...
+def load_spec(path: str, set: Sequence[str]) -> LoadedSpec: ...
