@@ -87,7 +87,7 @@ class Run:
 
 
 def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint",
-             variant="plus", reduced=False, every=1, wrap_angles=False, **method):
+             variant="plus", reduced=False, every=1, wrap_angles=False, progress=None, **method):
     """Integrates ``system`` from ``q0`` with momenta ``p0`` or velocities ``v0``.
 
     Give two of ``step``, ``steps`` and ``duration`` (all three must agree). ``q0``, ``p0`` and
@@ -99,11 +99,20 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``. Every
     ``every``-th row is kept (and the last).
 
-    The GIL is released while the run integrates.
+    The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.
+    ``progress`` shows a bar (``True``; by default only in a notebook), or is called as
+    ``progress(k, steps)`` about ten times a second.
     """
     q0, p0, v0, h, n, keys = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
     every = _count(every, "every")
-    arrays = _ddirac.simulate(system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), keys)
+    from .progress import callback
+
+    report, close = callback(progress, n)
+    try:
+        arrays = _ddirac.simulate(system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), keys, report)
+    finally:
+        if close is not None:
+            close()
     names = system.coordinates
     return Run(arrays, names, system.group)
 

@@ -38,7 +38,7 @@ class Spec:
         """Where ``ddirac run`` would write this spec's output."""
         return os.fspath(self._handle.directory)
 
-    def run(self, out=None, write=None):
+    def run(self, out=None, write=None, progress=None):
         """Integrates the spec and returns a :class:`ddirac.Run`.
 
         With ``out`` (a directory) or ``write=True`` (the spec's own directory) it also writes the files
@@ -47,7 +47,15 @@ class Spec:
         from .run import Run
 
         if out is None and not write:
-            return Run(self._handle.run_arrays(), self.system.coordinates, self.system.group)
+            from .progress import callback
+
+            report, close = callback(progress, self.steps)
+            try:
+                arrays = self._handle.run_arrays(report)
+            finally:
+                if close is not None:
+                    close()
+            return Run(arrays, self.system.coordinates, self.system.group)
         directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
         return _read_run(directory, self.system)
 

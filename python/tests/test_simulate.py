@@ -147,3 +147,36 @@ def test_ctrl_c_stops_a_run_within_a_fraction_of_a_second():
     assert stopped < 0.3 + 0.5, stopped
     # The stop request does not outlive the interrupted run.
     assert len(ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=10)) == 11
+
+
+def test_progress_is_reported_about_ten_times_a_second_and_a_raising_callback_stops_the_run():
+    chain = ddirac.System.builtin("pendulum_chain", links=8)
+    seen = []
+    run = ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual",
+                          every=1000, progress=lambda k, steps: seen.append((k, steps)))
+    assert len(run) == 101 and seen, "a run of about half a second reports"
+    assert all(steps == 100_000 for _, steps in seen) and [k for k, _ in seen] == sorted(k for k, _ in seen)
+
+    class Stop(Exception):
+        pass
+
+    def stop(k, steps):
+        raise Stop(k)
+
+    with pytest.raises(Stop):
+        ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual",
+                        progress=stop)
+
+
+def test_without_tqdm_the_bar_is_a_line_on_stderr_that_is_cleared_at_the_end(capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)  # as if tqdm were not installed
+    chain = ddirac.System.builtin("pendulum_chain", links=8)
+    ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual", every=1000,
+                    progress=True)
+    err = capsys.readouterr().err
+    assert "ddirac [" in err and "/100000" in err and err.endswith("\r"), repr(err[-80:])
+    # Off by default outside a notebook.
+    ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual", every=1000)
+    assert capsys.readouterr().err == ""

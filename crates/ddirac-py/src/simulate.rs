@@ -105,7 +105,8 @@ pub(crate) fn collect(
     Ok((columns, summary))
 }
 
-/// The watch's message when a Python signal handler raised: the run stopped for it.
+/// The watch's message when a Python signal handler or the progress callback raised: the run stopped
+/// for it.
 #[derive(Debug)]
 struct SignalRaised;
 
@@ -117,33 +118,55 @@ impl std::fmt::Display for SignalRaised {
 
 impl std::error::Error for SignalRaised {}
 
+/// How often a run reports its progress to the callback of [`simulate`].
+pub(crate) const PROGRESS_EVERY: Duration = Duration::from_millis(100);
+
 /// Runs `work` on the calling thread with the GIL released, handing it a watch for the engine's
 /// step loop ([`ddirac::integrate_watched`]) that runs Python's signal handlers every
-/// [`SIGNAL_POLL`]: a handler that raises (Ctrl-C's `KeyboardInterrupt`) stops the run before its next
-/// step, and its exception is raised. Python runs signal handlers in the main thread only; a run
-/// started from another thread is not interrupted.
+/// [`SIGNAL_POLL`] and calls `progress(k)` every [`PROGRESS_EVERY`]: a handler that raises (Ctrl-C's
+/// `KeyboardInterrupt`), or the callback raising, stops the run before its next step and the exception
+/// is raised. Python runs signal handlers in the main thread only; a run started from another thread
+/// is not interrupted. A panic of the engine becomes `ddirac.Error`.
 pub(crate) fn watched<T: Send>(
     py: Python<'_>,
+    progress: Option<Py<PyAny>>,
     work: impl FnOnce(&mut dyn FnMut(usize) -> Result<(), ddirac::OutputError>) -> Result<T, ddirac::Error> + Send,
 ) -> PyResult<T> {
     let mut raised: Option<PyErr> = None;
     let result = py.detach(|| {
-        let mut last = Instant::now();
-        let mut watch = |_k: usize| -> Result<(), ddirac::OutputError> {
-            if last.elapsed() < SIGNAL_POLL {
+        let (mut signals, mut reported) = (Instant::now(), Instant::now());
+        let mut watch = |k: usize| -> Result<(), ddirac::OutputError> {
+            let report = progress.is_some() && reported.elapsed() >= PROGRESS_EVERY;
+            if !report && signals.elapsed() < SIGNAL_POLL {
                 return Ok(());
             }
-            last = Instant::now();
-            Python::attach(|py| py.check_signals()).map_err(|e| {
+            signals = Instant::now();
+            let checked = Python::attach(|py| {
+                py.check_signals()?;
+                if let (true, Some(callback)) = (report, &progress) {
+                    reported = Instant::now();
+                    callback.call1(py, (k,))?;
+                }
+                Ok::<(), PyErr>(())
+            });
+            checked.map_err(|e| {
                 raised = Some(e);
                 Box::new(SignalRaised) as ddirac::OutputError
             })
         };
-        work(&mut watch)
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&mut watch)))
     });
     match (raised, result) {
         (Some(e), _) => Err(e),
-        (None, result) => result.map_err(engine),
+        (None, Ok(result)) => result.map_err(engine),
+        (None, Err(panic)) => {
+            let what = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("a panic");
+            Err(raise(format!("internal error of the engine ({what}); please report it with the run's arguments")))
+        }
     }
 }
 
@@ -162,7 +185,7 @@ pub(crate) struct Columns {
 /// returns a dict of NumPy arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with
 /// NaN on the last row, `momentum_map` of shape (rows, n_g)) and the `summary` dict.
 #[pyfunction]
-#[pyo3(signature = (system, q0, p0, v0, step, steps, every, wrap_angles, method))]
+#[pyo3(signature = (system, q0, p0, v0, step, steps, every, wrap_angles, method, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -175,27 +198,29 @@ pub fn simulate<'py>(
     every: usize,
     wrap_angles: bool,
     method: MethodKeys,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let method = method.method()?;
     let problem = problem(q0, p0, v0, step, steps)?;
     if every == 0 {
         return Err(raise("`every` must be at least 1"));
     }
-    run(py, system, problem, method, OutputOptions { every, wrap_angles })
+    run(py, system, problem, method, OutputOptions { every, wrap_angles }, progress)
 }
 
 /// Integrates `problem` for `system` with `method`, keeping the rows `output` asks for, into the dict
-/// [`simulate`] returns.
+/// [`simulate`] returns; `progress(k)` is called with the step index every [`PROGRESS_EVERY`].
 pub(crate) fn run<'py>(
     py: Python<'py>,
     system: &SystemHandle,
     problem: Problem,
     method: Method,
     output: OutputOptions,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
-    let (columns, summary) = watched(py, |watch| collect(inner.as_ref(), &problem, &method, &output, watch))?;
+    let (columns, summary) = watched(py, progress, |watch| collect(inner.as_ref(), &problem, &method, &output, watch))?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
     let out = PyDict::new(py);

@@ -107,9 +107,10 @@ impl LoadedSpec {
     }
 
     /// Integrates the spec into arrays (the dict `ddirac.simulate` returns), writing no file.
-    fn run_arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    #[pyo3(signature = (progress=None))]
+    fn run_arrays<'py>(&self, py: Python<'py>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let system = self.system();
-        crate::simulate::run(py, &system, self.problem.clone(), self.method.clone(), self.output)
+        crate::simulate::run(py, &system, self.problem.clone(), self.method.clone(), self.output, progress)
     }
 
     /// Runs the spec as `ddirac run --quiet` does into `out` (default: the spec's directory) and
