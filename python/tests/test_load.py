@@ -45,6 +45,11 @@ def test_a_run_into_a_directory_writes_the_files_and_reads_back_the_same_arrays(
     with open(tmp_path / "cp" / "summary.json") as f:
         summary = json.load(f)
     assert written.summary == summary and summary["final"]["q"] == list(in_memory.q[-1])
+    # The summary of a run without files is the dict of summary.json but for what only a file run has.
+    timing = {"wall_seconds", "total_wall_seconds", "spec"}
+    assert set(summary) - set(in_memory.summary) == {"spec", "total_wall_seconds"}
+    assert {k: v for k, v in in_memory.summary.items() if k not in timing} == \
+        {k: v for k, v in summary.items() if k not in timing}
 
 
 def test_spec_errors_carry_the_command_lines_diagnostic():

@@ -180,3 +180,26 @@ def test_without_tqdm_the_bar_is_a_line_on_stderr_that_is_cleared_at_the_end(cap
     # Off by default outside a notebook.
     ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual", every=1000)
     assert capsys.readouterr().err == ""
+
+
+def test_two_runs_in_two_python_threads_overlap_in_time():
+    import time
+
+    chain = ddirac.System.builtin("pendulum_chain", links=8)
+    spans = {}
+
+    def work(name):
+        stamps = []
+        ddirac.simulate(chain, q0=[0.3] * 8, p0=[0.0] * 8, step=0.005, steps=100_000, derivatives="dual",
+                        every=1000, progress=lambda k, steps: stamps.append(time.monotonic()))
+        spans[name] = (stamps[0], stamps[-1])
+
+    threads = [threading.Thread(target=work, args=(name,)) for name in ("a", "b")]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    (a0, a1), (b0, b1) = spans["a"], spans["b"]
+    # Each reported progress while the other was running: with the GIL held for a whole run, one would
+    # start only after the other ended.
+    assert a0 < b1 and b0 < a1, spans

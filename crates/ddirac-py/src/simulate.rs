@@ -220,6 +220,7 @@ pub(crate) fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let inner = system.inner.clone();
     let n = inner.coordinates().len();
+    let (problem_for_summary, method_for_summary) = (problem.clone(), method.clone());
     let (columns, summary) = watched(py, progress, |watch| collect(inner.as_ref(), &problem, &method, &output, watch))?;
     let rows = columns.t.len();
     let n_g = columns.momentum_map.len().checked_div(rows).unwrap_or(0);
@@ -230,7 +231,8 @@ pub(crate) fn run<'py>(
     out.set_item("energy", PyArray1::from_vec(py, columns.energy))?;
     out.set_item("discrete_energy", PyArray1::from_vec(py, columns.discrete_energy))?;
     out.set_item("momentum_map", PyArray1::from_vec(py, columns.momentum_map).reshape([rows, n_g])?)?;
-    out.set_item("summary", summary_dict(py, system, &summary)?)?;
+    let (run_problem, run_method) = (&problem_for_summary, &method_for_summary);
+    out.set_item("summary", summary_dict(py, system, &summary, run_problem, run_method, &output)?)?;
     Ok(out)
 }
 
@@ -278,7 +280,14 @@ pub(crate) fn interruptible<T: Send + 'static>(
 }
 
 /// The summary with the keys of `summary.json` that a run from Python has.
-fn summary_dict<'py>(py: Python<'py>, system: &SystemHandle, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
+fn summary_dict<'py>(
+    py: Python<'py>,
+    system: &SystemHandle,
+    s: &Summary,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("ddirac_version", env!("CARGO_PKG_VERSION"))?;
     d.set_item("system", &system.name)?;
@@ -288,9 +297,38 @@ fn summary_dict<'py>(py: Python<'py>, system: &SystemHandle, s: &Summary) -> PyR
     }
     d.set_item("parameters", parameters)?;
     d.set_item("coordinates", &s.coordinates)?;
+    let coordinates = system.inner.coordinates();
+    let angles: Vec<&str> =
+        coordinates.iter().filter(|c| c.kind == ddirac::CoordinateKind::Angle).map(|c| c.name.as_str()).collect();
+    d.set_item("angles", angles)?;
+    let split = ddirac::Split::new(&coordinates);
+    let m = PyDict::new(py);
+    m.set_item("rule", method.rule.name())?;
+    m.set_item("variant", method.variant.name())?;
+    m.set_item("reduced", method.reduced)?;
+    let zero = || vec![vec![0.0; split.n_x()]; split.n_g()];
+    m.set_item("connection", method.connection.as_ref().map_or_else(zero, Connection::rows))?;
+    m.set_item("tolerance", method.newton.tolerance)?;
+    m.set_item("max_iterations", method.newton.max_iterations)?;
+    m.set_item("check_invariance", method.check_invariance)?;
+    m.set_item("derivatives", method.differentiation.name())?;
+    m.set_item("on_energy_jump", method.energy_jump.action.name())?;
+    m.set_item("energy_jump_threshold", method.energy_jump.threshold)?;
+    d.set_item("method", m)?;
     d.set_item("steps", s.steps)?;
     d.set_item("step", s.step)?;
     d.set_item("duration", s.step * s.steps as f64)?;
+    let initial = PyDict::new(py);
+    initial.set_item("q", &problem.q0)?;
+    match &problem.initial {
+        InitialMomentum::Momentum(p) => initial.set_item("p", p)?,
+        InitialMomentum::Velocity(v) => initial.set_item("v", v)?,
+    }
+    d.set_item("initial", initial)?;
+    let out = PyDict::new(py);
+    out.set_item("every", output.every)?;
+    out.set_item("wrap_angles", output.wrap_angles)?;
+    d.set_item("output", out)?;
     let last = PyDict::new(py);
     last.set_item("q", &s.final_q)?;
     last.set_item("p", &s.final_p)?;
