@@ -32,8 +32,7 @@ def main():
     dsp = ddirac.System.builtin("double_spherical_pendulum")
     for steps, what in [(10_000, "ratio"), (10, "difference")]:
         kwargs = dict(q0=[0, 2.25, 2, 3], p0=[0, 0, 1, 1], step=0.01, steps=steps, rule="midpoint", reduced=True)
-        q0, p0, v0, h, n, keys = _prepare(dsp, kwargs["q0"], kwargs["p0"], None, 0.01, steps, None, "midpoint",
-                                          "plus", True, {})
+        run_args = _prepare(dsp, kwargs["q0"], kwargs["p0"], None, 0.01, steps, None, "midpoint", "plus", True, {})
         python, rust, compared = [], [], []
         for r in range(args.rounds):
             times = {}
@@ -43,7 +42,7 @@ def main():
                     ddirac.simulate(dsp, **kwargs)
                     times[side] = time.perf_counter() - start
                 else:
-                    times[side] = _ddirac.rust_seconds(dsp._handle, q0, p0, v0, h, n, keys)
+                    times[side] = _ddirac.rust_seconds(dsp._handle, run_args)
             python.append(times["python"])
             rust.append(times["rust"])
             compared.append(times["python"] / times["rust"] if what == "ratio" else

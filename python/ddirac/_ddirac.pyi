@@ -1,7 +1,7 @@
 """Type stubs of the extension module (the package's public API is in its Python modules)."""
 
 from os import PathLike
-from typing import Any, Optional, Sequence
+from typing import Any, Callable, Optional, Sequence
 
 __version__: str
 
@@ -36,7 +36,7 @@ class LoadedSpec:
     def problem(self) -> tuple[float, int, list[float], Optional[list[float]], Optional[list[float]]]: ...
     @property
     def method(self) -> dict[str, Any]: ...
-    def run_arrays(self) -> dict[str, Any]: ...
+    def run_arrays(self, progress: Optional[Callable[[int], None]] = None) -> dict[str, Any]: ...
     def run_files(self, out: Optional[str] = None) -> PathLike[str]: ...
 
 def builtin_system(name: str, parameters: Sequence[tuple[str, float]]) -> SystemHandle: ...
@@ -54,31 +54,11 @@ def text_system(
 ) -> SystemHandle: ...
 def simulate(
     system: SystemHandle,
-    q0: Sequence[float],
-    p0: Optional[Sequence[float]],
-    v0: Optional[Sequence[float]],
-    step: float,
-    steps: int,
+    run_args: dict[str, Any],
     every: int,
     wrap_angles: bool,
-    method: dict[str, Any],
+    progress: Optional[Callable[[int], None]] = None,
 ) -> dict[str, Any]: ...
-def check(
-    system: SystemHandle,
-    q0: Sequence[float],
-    p0: Optional[Sequence[float]],
-    v0: Optional[Sequence[float]],
-    step: float,
-    steps: int,
-    method: dict[str, Any],
-) -> dict[str, Any]: ...
-def rust_seconds(
-    system: SystemHandle,
-    q0: Sequence[float],
-    p0: Optional[Sequence[float]],
-    v0: Optional[Sequence[float]],
-    step: float,
-    steps: int,
-    method: dict[str, Any],
-) -> float: ...
+def check(system: SystemHandle, run_args: dict[str, Any]) -> dict[str, Any]: ...
+def rust_seconds(system: SystemHandle, run_args: dict[str, Any]) -> float: ...
 def load_spec(path: str, set: Sequence[str]) -> LoadedSpec: ...

@@ -103,13 +103,13 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     ``progress`` shows a bar (``True``; by default only in a notebook), or is called as
     ``progress(k, steps)`` about ten times a second.
     """
-    q0, p0, v0, h, n, keys = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
+    args = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
     every = _count(every, "every")
     from .progress import callback
 
-    report, close = callback(progress, n)
+    report, close = callback(progress, args["steps"])
     try:
-        arrays = _ddirac.simulate(system._handle, q0, p0, v0, h, n, every, bool(wrap_angles), keys, report)
+        arrays = _ddirac.simulate(system._handle, args, every, bool(wrap_angles), report)
     finally:
         if close is not None:
             close()
@@ -124,12 +124,13 @@ def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, ru
     2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map and the
     primary constraint. Returns the findings as a dict, with ``verdict``: whether such a run would
     go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with."""
-    q0, p0, v0, h, n, keys = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
-    return _ddirac.check(system._handle, q0, p0, v0, h, n, keys)
+    return _ddirac.check(system._handle, _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced,
+                                                  method))
 
 
 def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method):
-    """The arguments of a run, checked and in the module's types."""
+    """The arguments of a run, checked, as the dict the module takes: ``q0``, ``p0``, ``v0``, ``step``,
+    ``steps`` and the ``method`` keys."""
     from .system import System
 
     if not isinstance(system, System):
@@ -162,7 +163,7 @@ def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, 
         "on_energy_jump": str(keys["on_energy_jump"]),
         "energy_jump_threshold": None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
     }
-    return q0, p0, v0, h, n, keys
+    return {"q0": q0, "p0": p0, "v0": v0, "step": h, "steps": n, "method": keys}
 
 
 def _vector(values, names, what):

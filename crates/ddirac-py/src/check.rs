@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::error::engine;
-use crate::simulate::{problem, MethodKeys};
+use crate::simulate::RunArgs;
 use crate::system::SystemHandle;
 
 fn findings<'py>(py: Python<'py>, findings: &[Finding], tolerance: f64) -> PyResult<Bound<'py, PyList>> {
@@ -24,24 +24,12 @@ fn findings<'py>(py: Python<'py>, findings: &[Finding], tolerance: f64) -> PyRes
     Ok(list)
 }
 
-/// Tests the hypotheses of a run of `system` from (q0, p0 or v0) with the `method` keys near the
+/// Tests the hypotheses of the run `run_args` of `system` near the
 /// initial data; returns the findings and the verdict (`runs`, and the `error` a run would fail with
 /// or the `warnings` it would run with).
 #[pyfunction]
-#[pyo3(signature = (system, q0, p0, v0, step, steps, method))]
-#[allow(clippy::too_many_arguments)]
-pub fn check<'py>(
-    py: Python<'py>,
-    system: &SystemHandle,
-    q0: Vec<f64>,
-    p0: Option<Vec<f64>>,
-    v0: Option<Vec<f64>>,
-    step: f64,
-    steps: usize,
-    method: MethodKeys,
-) -> PyResult<Bound<'py, PyDict>> {
-    let method = method.method()?;
-    let problem = problem(q0, p0, v0, step, steps)?;
+pub fn check<'py>(py: Python<'py>, system: &SystemHandle, run_args: RunArgs) -> PyResult<Bound<'py, PyDict>> {
+    let (problem, method) = run_args.problem_and_method()?;
     let inner = system.inner.clone();
     let checked = method.clone();
     let report: CheckReport = py.detach(move || inner.check(&problem, &checked)).map_err(engine)?;

@@ -7,26 +7,14 @@ use ddirac::OutputOptions;
 use pyo3::prelude::*;
 
 use crate::error::engine;
-use crate::simulate::{collect, problem, MethodKeys};
+use crate::simulate::{collect, RunArgs};
 use crate::system::SystemHandle;
 
 /// Seconds the Rust library takes for the run `ddirac.simulate` would make with these arguments
 /// (`every` = 1): set-up, integration and the rows gathered into vectors, without Python objects.
 #[pyfunction]
-#[pyo3(signature = (system, q0, p0, v0, step, steps, method))]
-#[allow(clippy::too_many_arguments)]
-pub fn rust_seconds(
-    py: Python<'_>,
-    system: &SystemHandle,
-    q0: Vec<f64>,
-    p0: Option<Vec<f64>>,
-    v0: Option<Vec<f64>>,
-    step: f64,
-    steps: usize,
-    method: MethodKeys,
-) -> PyResult<f64> {
-    let method = method.method()?;
-    let problem = problem(q0, p0, v0, step, steps)?;
+pub fn rust_seconds(py: Python<'_>, system: &SystemHandle, run_args: RunArgs) -> PyResult<f64> {
+    let (problem, method) = run_args.problem_and_method()?;
     let inner = system.inner.clone();
     py.detach(move || {
         let start = Instant::now();

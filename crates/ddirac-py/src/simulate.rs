@@ -66,20 +66,30 @@ impl MethodKeys {
     }
 }
 
-/// The problem from the time grid and the initial data (exactly one of `p0` and `v0`).
-pub(crate) fn problem(
+/// What a run is made of, as the Python package passes it (a dict): initial data (`q0` with exactly one
+/// of `p0` and `v0`), time grid (`step`, `steps`) and the `method` keys.
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub(crate) struct RunArgs {
     q0: Vec<f64>,
     p0: Option<Vec<f64>>,
     v0: Option<Vec<f64>>,
     step: f64,
     steps: usize,
-) -> PyResult<Problem> {
-    let initial = match (p0, v0) {
-        (Some(p), None) => InitialMomentum::Momentum(p),
-        (None, Some(v)) => InitialMomentum::Velocity(v),
-        _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
-    };
-    Ok(Problem::new(step, steps, q0, initial))
+    method: MethodKeys,
+}
+
+impl RunArgs {
+    /// The problem and the method, or an error naming what is wrong.
+    pub(crate) fn problem_and_method(self) -> PyResult<(Problem, Method)> {
+        let method = self.method.method()?;
+        let initial = match (self.p0, self.v0) {
+            (Some(p), None) => InitialMomentum::Momentum(p),
+            (None, Some(v)) => InitialMomentum::Velocity(v),
+            _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
+        };
+        Ok((Problem::new(self.step, self.steps, self.q0, initial), method))
+    }
 }
 
 /// Integrates and gathers the rows column by column: the whole work of a run from Python but the
@@ -181,27 +191,20 @@ pub(crate) struct Columns {
     momentum_map: Vec<f64>,
 }
 
-/// Integrates `system` from (q0, p0 or v0) for `steps` steps of `step` with the `method` keys;
+/// Integrates `system` for the run `run_args` ([`RunArgs`]), keeping every `every`-th row;
 /// returns a dict of NumPy arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with
 /// NaN on the last row, `momentum_map` of shape (rows, n_g)) and the `summary` dict.
 #[pyfunction]
-#[pyo3(signature = (system, q0, p0, v0, step, steps, every, wrap_angles, method, progress=None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (system, run_args, every, wrap_angles, progress=None))]
 pub fn simulate<'py>(
     py: Python<'py>,
     system: &SystemHandle,
-    q0: Vec<f64>,
-    p0: Option<Vec<f64>>,
-    v0: Option<Vec<f64>>,
-    step: f64,
-    steps: usize,
+    run_args: RunArgs,
     every: usize,
     wrap_angles: bool,
-    method: MethodKeys,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = method.method()?;
-    let problem = problem(q0, p0, v0, step, steps)?;
+    let (problem, method) = run_args.problem_and_method()?;
     if every == 0 {
         return Err(raise("`every` must be at least 1"));
     }
