@@ -135,6 +135,25 @@ pub enum CliError {
         /// What is wrong with it.
         why: String,
     },
+    /// The members of an ensemble are malformed.
+    #[error("invalid members in {what}: {why}")]
+    #[diagnostic(
+        code(ddirac::members),
+        help(
+            "a members file has a header of spec keys (`initial.q.<coordinate>`, `initial.p.<coordinate>`, \
+             `initial.v.<coordinate>`, `parameters.<name>`) and one row of numbers per member"
+        )
+    )]
+    Members {
+        /// The file, or the spec's `[ensemble]` table.
+        what: String,
+        /// What is wrong.
+        why: String,
+    },
+    /// Shard directories that do not form one ensemble.
+    #[error("cannot merge: {0}")]
+    #[diagnostic(code(ddirac::merge))]
+    Merge(String),
     /// A value of the spec is wrong.
     #[error(transparent)]
     #[diagnostic(transparent)]
@@ -194,7 +213,7 @@ impl CliError {
     /// The exit status of this failure (see [`exit`]).
     pub fn exit_code(&self) -> u8 {
         match self {
-            Self::Set { .. } | Self::Spec(_) => exit::SPEC,
+            Self::Set { .. } | Self::Spec(_) | Self::Members { .. } | Self::Merge(_) => exit::SPEC,
             Self::Integration(_) | Self::IntegrationAt(_) => exit::NUMERICAL,
             Self::Read { .. } | Self::Output { .. } | Self::NotADirectory { .. } | Self::Busy { .. } => exit::IO,
             Self::Interrupted(e) => e.signal.exit_code(),

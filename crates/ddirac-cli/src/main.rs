@@ -5,6 +5,8 @@
 //! ddirac run SPEC.toml --compare [--out DIR] [--set KEY=VALUE]... [--quiet]
 //! ddirac convergence SPEC.toml --steps 10,50,100,200 [--out DIR] [--set KEY=VALUE]... [--quiet]
 //! ddirac plot DIR [--quiet]
+//! ddirac ensemble SPEC.toml [--members FILE.csv] [--out DIR] [--threads T] [--shard I/N] [--set KEY=VALUE]... [--quiet]
+//! ddirac merge DIR... --out DIR [--quiet]
 //! ddirac check SPEC.toml [--set KEY=VALUE]...
 //! ddirac systems
 //! ddirac bench [--only GROUP,...] [--rounds R] [--batch-ms MS] [--quick] [--json PATH]
@@ -14,7 +16,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use ddirac_cli::{bench, check, compare, convergence, diagnostics, output, plot, run, signals};
+use ddirac_cli::{bench, check, compare, convergence, diagnostics, ensemble, output, plot, run, signals};
 
 /// Structure-preserving integrators for Lagrangian systems with abelian symmetry, after
 /// "Discrete Dirac reduction of implicit Lagrangian systems with abelian symmetry groups".
@@ -108,6 +110,52 @@ enum Command {
               value_parser = clap::value_parser!(u64).range(1..))]
         steps: Vec<u64>,
     },
+    /// Run many members of one spec that differ in initial data and/or parameters, in parallel;
+    /// writes final.csv (member, status, final q and p), members.csv, NPY arrays with a leading member
+    /// axis (final states, status, diagnostics, and with `[ensemble] trajectories = true` the rows of
+    /// every member) and summary.json.
+    ///
+    /// The members come from `--members FILE.csv` (a header of spec keys as `--set` names them,
+    /// `initial.q.<coordinate>`, `initial.p.<coordinate>`, `initial.v.<coordinate>`,
+    /// `parameters.<name>`, then one row of numbers per member) or from the spec's `[ensemble]` table
+    /// (grids and seeded random draws). Member k gives the same numbers as `ddirac run` with its
+    /// values set. A member that fails is recorded (status `failed`, reason in summary.json) and the
+    /// others go on. The output directory defaults to out/<spec file stem>-ensemble.
+    #[command(after_help = "Examples:
+  ddirac ensemble examples/ensemble_poincare.toml
+  ddirac ensemble examples/charged_particle.toml --members members.csv --out out/sweep --threads 8
+  ddirac ensemble examples/ensemble_poincare.toml --out out/poincare --shard $SLURM_ARRAY_TASK_ID/16
+  ddirac merge out/poincare/shard-*-of-16 --out out/poincare/all")]
+    Ensemble {
+        #[command(flatten)]
+        target: SpecTarget,
+        /// The members: a CSV file with one column per varied spec key [default: the spec's
+        /// `[ensemble]` table].
+        #[arg(long, value_name = "FILE.csv")]
+        members: Option<PathBuf>,
+        /// Threads [default: all cores].
+        #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
+        threads: Option<u64>,
+        /// Run only the I-th of N contiguous parts of the members (I from 0, as
+        /// SLURM_ARRAY_TASK_ID), into DIR/shard-I-of-N; join the parts with `ddirac merge`.
+        #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
+    },
+    /// Join the directories of the shards of one ensemble (`ddirac ensemble --shard I/N`) into one,
+    /// equal to the unsharded run's files.
+    #[command(after_help = "Example:
+  ddirac merge out/poincare/shard-*-of-16 --out out/poincare/all")]
+    Merge {
+        /// The shard directories, in any order.
+        #[arg(required = true, num_args = 1..)]
+        dirs: Vec<PathBuf>,
+        /// The merged directory.
+        #[arg(long, value_name = "DIR", required = true)]
+        out: PathBuf,
+        /// Print nothing on success.
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Draw the figures (PNG and SVG) of a finished run from DIR/trajectory.csv and DIR/summary.json.
     #[command(after_help = "Example:
   ddirac run examples/kepler.toml --out out/kepler && ddirac plot out/kepler")]
@@ -142,7 +190,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let command = Cli::parse().command;
-    if matches!(command, Command::Run { .. } | Command::Convergence { .. }) {
+    if matches!(command, Command::Run { .. } | Command::Convergence { .. } | Command::Ensemble { .. }) {
         signals::install();
     }
     // Long messages stay on one line, so that they can be searched for in logs. A report takes its
@@ -162,6 +210,17 @@ fn main() -> ExitCode {
         Command::Convergence { target: SpecTarget { input: SpecInput { spec, set }, out, quiet }, steps } => {
             convergence::convergence(&convergence::Options { spec, steps, out, set, quiet })
         }
+        Command::Ensemble {
+            target: SpecTarget { input: SpecInput { spec, set }, out, quiet },
+            members,
+            threads,
+            shard,
+        } => {
+            let threads = threads.map(|t| t as usize);
+            let options = ensemble::files::Options { spec, set, members, out, threads, shard, quiet };
+            ensemble::files::command(&options).map_err(Into::into)
+        }
+        Command::Merge { dirs, out, quiet } => ensemble::files::merge(&dirs, &out, quiet).map_err(Into::into),
         Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),
         Command::Check { input: SpecInput { spec, set } } => {
             check::check(&check::CheckOptions { spec, set }).map_err(Into::into)
@@ -179,6 +238,17 @@ fn main() -> ExitCode {
             ExitCode::from(diagnostics::exit_code(&error))
         }
     }
+}
+
+/// `I/N` of `--shard`.
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let (i, n) = text.split_once('/').ok_or("write the shard as I/N, e.g. 0/16")?;
+    let i: usize = i.trim().parse().map_err(|_| format!("`{i}` is not a shard index"))?;
+    let n: usize = n.trim().parse().map_err(|_| format!("`{n}` is not a number of shards"))?;
+    if n == 0 || i >= n {
+        return Err(format!("the shard index must be in 0..{n} (it counts from 0, as SLURM_ARRAY_TASK_ID)"));
+    }
+    Ok((i, n))
 }
 
 /// The text of `ddirac systems`.

@@ -68,6 +68,74 @@ impl Column {
     }
 }
 
+/// The header of an array of any shape and element type (`descr`: `<f8`, `<i8`, `|u1`), padded as
+/// NumPy pads it: magic, version, length and dict together a multiple of 64 bytes.
+pub fn header_nd(descr: &str, shape: &[u64]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(u64::to_string).collect();
+    let shape = match dims.len() {
+        1 => format!("({},)", dims[0]),
+        _ => format!("({})", dims.join(", ")),
+    };
+    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    let total = (10 + dict.len() + 1).div_ceil(64) * 64;
+    let mut bytes = vec![b' '; total];
+    bytes[..6].copy_from_slice(MAGIC);
+    bytes[6..8].copy_from_slice(&[1, 0]);
+    bytes[8..10].copy_from_slice(&((total - 10) as u16).to_le_bytes());
+    bytes[10..10 + dict.len()].copy_from_slice(dict.as_bytes());
+    bytes[total - 1] = b'\n';
+    bytes
+}
+
+/// Writes a whole array: the header of `shape` and `descr`, then `data` (already in that layout).
+pub fn write(path: &Path, descr: &str, shape: &[u64], data: &[u8]) -> io::Result<()> {
+    let mut file = BufWriter::new(File::create(path)?);
+    file.write_all(&header_nd(descr, shape))?;
+    file.write_all(data)?;
+    file.into_inner().map_err(|e| e.into_error())?.sync_all()
+}
+
+/// f64 values as the bytes of a `<f8` array.
+pub fn f64_bytes(values: &[f64]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// An array read back: element type, shape and the data's bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Array {
+    /// `<f8`, `<i8`, `|u1`, …
+    pub descr: String,
+    /// The shape.
+    pub shape: Vec<u64>,
+    /// The data, in C order.
+    pub data: Vec<u8>,
+}
+
+/// Reads an array of format version 1.0 written by this module (C order).
+pub fn read(path: &Path) -> io::Result<Array> {
+    let bytes = std::fs::read(path)?;
+    let invalid = |why: &str| io::Error::new(io::ErrorKind::InvalidData, format!("not a .npy file of ddirac: {why}"));
+    if bytes.len() < 10 || &bytes[..6] != MAGIC || bytes[6] != 1 {
+        return Err(invalid("no NPY 1.0 magic"));
+    }
+    let len = 10 + usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+    let dict = std::str::from_utf8(bytes.get(10..len).ok_or_else(|| invalid("short header"))?)
+        .map_err(|_| invalid("header not UTF-8"))?;
+    let field = |key: &str| dict.split(key).nth(1).ok_or_else(|| invalid(key));
+    let descr = field("'descr': '")?.split('\'').next().unwrap_or_default().to_owned();
+    if field("'fortran_order': ")?.starts_with("True") {
+        return Err(invalid("Fortran order"));
+    }
+    let shape_text = field("'shape': (")?.split(')').next().unwrap_or_default();
+    let shape = shape_text
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().map_err(|_| invalid("shape")))
+        .collect::<io::Result<Vec<u64>>>()?;
+    Ok(Array { descr, shape, data: bytes[len..].to_vec() })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,5 +154,25 @@ mod tests {
         }
         // The dict for u64::MAX leaves a padding space before the newline.
         assert_eq!(header(u64::MAX)[HEADER_LEN - 2], b' ');
+    }
+
+    #[test]
+    fn arrays_of_any_shape_read_back_as_written() {
+        let dir = std::env::temp_dir().join(format!("ddirac-npy-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for (descr, shape) in [("<f8", vec![3u64]), ("<f8", vec![2, 3, 4]), ("|u1", vec![u64::MAX, 1, u64::MAX])] {
+            let header = header_nd(descr, &shape);
+            assert_eq!(header.len() % 64, 0);
+            assert_eq!(*header.last().unwrap(), b'\n');
+            let data: Vec<u8> = if shape[0] == u64::MAX {
+                vec![]
+            } else {
+                (0..shape.iter().product::<u64>() * 8).map(|b| b as u8).collect()
+            };
+            let path = dir.join("a.npy");
+            write(&path, descr, &shape, &data).unwrap();
+            assert_eq!(read(&path).unwrap(), Array { descr: descr.into(), shape, data });
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -13,7 +13,7 @@ use crate::output::{self, Trajectory};
 use crate::plot::ToolError;
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
-use crate::{estimate, lock, overrides, plot, report, signals, spec};
+use crate::{estimate, initial_entries, lock, overrides, plot, report, signals, spec};
 
 /// Options of `ddirac run`.
 pub struct RunOptions {
@@ -62,15 +62,45 @@ pub struct Loaded {
 /// Reads the spec at `path`, applies `set` and validates it.
 pub fn load(path: &Path, set: &[String]) -> Result<Loaded, CliError> {
     let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.to_owned(), source })?;
+    load_text(path, text, set)
+}
+
+/// Applies `set` to the spec text `text` of the file `path` and validates it. Assignments of
+/// initial entries by coordinate name (`initial.q.phi1=0.3`) are applied to the validated problem
+/// ([`initial_entries`]); the others edit the text.
+pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<Loaded, CliError> {
     let original = SpecSource::new(path.display().to_string(), text);
-    let source = if set.is_empty() {
+    let mut entries = vec![];
+    let mut edits = vec![];
+    for arg in set {
+        let entry = arg.split_once('=').and_then(|(key, value)| Some((initial_entries::Entry::parse(key)?, value)));
+        match entry {
+            Some((entry, value)) => {
+                let entry = entry.map_err(|why| CliError::Set { arg: arg.clone(), why })?;
+                let value: f64 = value.trim().parse().map_err(|_| CliError::Set {
+                    arg: arg.clone(),
+                    why: format!("`{}` is not a number", value.trim()),
+                })?;
+                entries.push((arg, entry, value));
+            }
+            None => edits.push(arg.clone()),
+        }
+    }
+    let source = if edits.is_empty() {
         original
     } else {
-        let edited = overrides::apply(&original, set)?;
+        let edited = overrides::apply(&original, &edits)?;
         SpecSource::new(format!("{} (with --set)", path.display()), edited)
     };
     let spec = spec::parse(&source)?;
-    let plan = spec::validate(&source, &spec)?;
+    let mut plan = spec::validate(&source, &spec)?;
+    if !entries.is_empty() {
+        let names: Vec<String> = plan.system.coordinates().into_iter().map(|c| c.name).collect();
+        let list: Vec<initial_entries::Entry> = entries.iter().map(|(_, e, _)| e.clone()).collect();
+        let values: Vec<f64> = entries.iter().map(|(_, _, v)| *v).collect();
+        initial_entries::apply(&mut plan.problem, &names, &list, &values)
+            .map_err(|why| CliError::Set { arg: entries[0].0.clone(), why })?;
+    }
     Ok(Loaded { source, spec, plan })
 }
 

@@ -137,6 +137,16 @@ pub trait DynStepper {
     /// Takes step k → k + 1; see [`Stepper::step`].
     fn step(&mut self) -> Result<StepReport, Error>;
 
+    /// Steps to the end, reporting every `every`-th row and the last to `observer` and calling
+    /// `watch` every [`crate::WATCH_STEPS`] steps; see [`Stepper::run_to_end`]. After an error the
+    /// stepper stays at the step that failed.
+    fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<(), Error>;
+
     /// The row of the current step; see [`Stepper::row`].
     fn row(&mut self) -> DynRow;
 
@@ -174,6 +184,15 @@ impl<S: System<N>, const N: usize> DynStepper for Stepper<'_, S, N> {
 
     fn step(&mut self) -> Result<StepReport, Error> {
         Stepper::step(self)
+    }
+
+    fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<(), Error> {
+        Stepper::run_to_end(self, every, observer, watch)
     }
 
     fn row(&mut self) -> DynRow {

@@ -28,6 +28,7 @@ mod check;
 pub mod compiled;
 pub mod diagnostics;
 mod energy_jump;
+pub mod ensemble;
 mod erased;
 mod error;
 pub mod expression;

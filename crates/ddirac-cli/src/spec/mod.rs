@@ -59,6 +59,70 @@ pub struct Spec {
     /// Where and what to write.
     #[serde(default)]
     pub output: OutputSpec,
+    /// Members generated for `ddirac ensemble` (the other commands ignore it).
+    pub ensemble: Option<Spanned<EnsembleSpec>>,
+}
+
+/// `[ensemble]`: the members of `ddirac ensemble` from grids and seeded random samples, and whether
+/// their trajectories are written.
+///
+/// ```text
+/// [ensemble]
+/// trajectories = true            # q, p, energy of every member at the rows of output.every
+/// samples = 100                  # random draws per grid point (with [[ensemble.random]])
+/// seed = 7
+/// [[ensemble.grid]]              # members: the Cartesian product of the axes, the first slowest,
+/// key = "initial.q.phi1"         #   each grid point repeated for `samples` draws
+/// from = 1.0                     # `count` equally spaced values from `from` to `to`, or
+/// to = 2.5                       #   `values = [...]`
+/// count = 16
+/// [[ensemble.random]]
+/// key = "parameters.B0"
+/// normal = [1.0, 0.1]            # mean, standard deviation; or uniform = [low, high]
+/// ```
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnsembleSpec {
+    /// Write each member's rows (every `output.every`-th step) as NPY arrays (default false).
+    pub trajectories: Option<Spanned<bool>>,
+    /// Grid axes; the members are their Cartesian product, the first axis varying slowest.
+    #[serde(default)]
+    pub grid: Vec<Spanned<GridAxis>>,
+    /// Random draws per grid point.
+    pub samples: Option<Spanned<i64>>,
+    /// Seed of the random draws (default 0).
+    pub seed: Option<Spanned<i64>>,
+    /// Keys drawn at random, in the order written.
+    #[serde(default)]
+    pub random: Vec<Spanned<RandomAxis>>,
+}
+
+/// `[[ensemble.grid]]`: one key's values, listed or equally spaced.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridAxis {
+    /// The spec key, as `--set` names it.
+    pub key: Spanned<String>,
+    /// Listed values.
+    pub values: Option<Numbers>,
+    /// First of `count` equally spaced values.
+    pub from: Option<Number>,
+    /// Last of them.
+    pub to: Option<Number>,
+    /// How many.
+    pub count: Option<Spanned<i64>>,
+}
+
+/// `[[ensemble.random]]`: one key drawn from a distribution.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RandomAxis {
+    /// The spec key, as `--set` names it.
+    pub key: Spanned<String>,
+    /// `[low, high]`: uniform on [low, high).
+    pub uniform: Option<Numbers>,
+    /// `[mean, standard deviation]`: normal.
+    pub normal: Option<Numbers>,
 }
 
 /// How a spec names its system.

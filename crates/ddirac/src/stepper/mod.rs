@@ -284,8 +284,9 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
     /// (what [`crate::integrate`] reports), each with the discrete energy of its step. The same
     /// steps and rows as [`Stepper::step`] and [`Stepper::row`], without choosing the scheme at each
-    /// step.
-    pub(crate) fn run_to_end(
+    /// step. `watch` is called with k every [`crate::WATCH_STEPS`] steps (from k = 0). After an error
+    /// the stepper stays at the step that failed, as after [`Stepper::step`].
+    pub fn run_to_end(
         &mut self,
         every: usize,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,

@@ -1,0 +1,226 @@
+//! An ensemble: many runs that share a method and a time grid and differ in initial data and/or
+//! parameters, in parallel on rayon's threads.
+//!
+//! Each member is run exactly as [`crate::integrate`] runs it (the same stepper, the same steps,
+//! the same rows), so member k of an ensemble equals the single run of its system and problem bit
+//! for bit, whichever thread runs it and whatever ran before on that thread. What members share is
+//! made once by the caller and borrowed: the system (for a text Lagrangian its parsed and lowered
+//! expression), and, through [`crate::compiled::native_compilations`]' cache of prepared programs,
+//! the native code: members that differ in initial data, or in the parameters of a text system
+//! (runtime inputs of the programs), compile once. Each member traces its generating function anew
+//! when it compiles (a few hundred microseconds, under 1 % of a run long enough to be compiled under
+//! `derivatives = "auto"`), so that its programs, guards and closed-form step are those of its own
+//! single run.
+//!
+//! A member that fails (Newton's method, a non-finite state, an energy jump made an error, or a
+//! refusal before its first step) is recorded as failed with its reason, step and state; the others
+//! go on. A stop request ([`crate::interrupt`]) or an error of the caller's sink stops the ensemble.
+
+use rayon::prelude::*;
+
+use crate::diagnostics::Row;
+use crate::integrator::OutputError;
+use crate::{DynSystem, Error, InitialMomentum, Input, Method, OutputOptions, Problem, Summary};
+
+/// The system of one member: shared by the ensemble, or the member's own (a parameter sweep of a
+/// built-in system, or of a text system's parameters).
+pub enum MemberSystem<'a> {
+    /// Borrowed from the caller, the same for many members.
+    Shared(&'a dyn DynSystem),
+    /// Made for this member.
+    Own(Box<dyn DynSystem>),
+}
+
+impl MemberSystem<'_> {
+    fn get(&self) -> &dyn DynSystem {
+        match self {
+            Self::Shared(system) => *system,
+            Self::Own(system) => system.as_ref(),
+        }
+    }
+}
+
+/// Rows kept of one member's run: those [`crate::integrate`] reports with the same
+/// [`OutputOptions`] (every `every`-th step and the last).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Rows {
+    /// Times.
+    pub t: Vec<f64>,
+    /// Configurations, row after row (rows × n).
+    pub q: Vec<f64>,
+    /// Momenta, row after row (rows × n).
+    pub p: Vec<f64>,
+    /// The Hamiltonian of each row.
+    pub energy: Vec<f64>,
+}
+
+/// How a member ended.
+#[derive(Debug)]
+pub enum Status {
+    /// All steps taken; the run's summary.
+    Finished(Box<Summary>),
+    /// The run stopped at `step` (time `t`), or was refused before its first step (`step` 0).
+    Failed {
+        /// The step that failed (the state reported is that of this step).
+        step: usize,
+        /// Its time.
+        t: f64,
+        /// Why.
+        error: Error,
+    },
+}
+
+/// One member's result: its status, its last state and the rows kept.
+#[derive(Debug)]
+pub struct Outcome {
+    /// Finished with a summary, or failed with its reason.
+    pub status: Status,
+    /// The configuration reached: q_N, or that of the failed step (q0 for a refused member).
+    pub final_q: Vec<f64>,
+    /// The momenta reached (p0 for a refused member, NaN where only v0 was given).
+    pub final_p: Vec<f64>,
+    /// The rows kept, if asked for; a failed member's end at its last reported row.
+    pub rows: Option<Rows>,
+}
+
+impl Outcome {
+    /// Whether the member took all its steps.
+    pub fn is_finished(&self) -> bool {
+        matches!(self.status, Status::Finished(_))
+    }
+}
+
+/// Runs one member as [`crate::integrate`] would, keeping its rows if `keep_rows`.
+///
+/// Returns an error only for a stop request ([`Error::Interrupted`]) or an error of `watch`; every
+/// other failure is the member's own and is in its [`Outcome`].
+pub fn run_member(
+    system: &dyn DynSystem,
+    problem: &Problem,
+    method: &Method,
+    output: &OutputOptions,
+    keep_rows: bool,
+    watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+) -> Result<Outcome, Error> {
+    let mut rows = keep_rows.then(Rows::default);
+    let refused = |error: Error| {
+        let p0 = match &problem.initial {
+            InitialMomentum::Momentum(p) => p.clone(),
+            InitialMomentum::Velocity(v) => vec![f64::NAN; v.len()],
+        };
+        Outcome {
+            status: Status::Failed { step: 0, t: 0.0, error },
+            final_q: problem.q0.clone(),
+            final_p: p0,
+            rows: None,
+        }
+    };
+    if output.every == 0 {
+        return Ok(refused(Error::Invalid { what: Input::Every, why: "must be at least 1".into() }));
+    }
+    let mut stepper = match system.stepper(problem, method) {
+        Ok(stepper) => stepper,
+        Err(error) => return Ok(refused(error)),
+    };
+    stepper.set_wrap_angles(output.wrap_angles);
+    let mut observer = |row: &Row<'_>| -> Result<(), OutputError> {
+        if let Some(rows) = &mut rows {
+            rows.t.push(row.t);
+            rows.q.extend_from_slice(row.q);
+            rows.p.extend_from_slice(row.p);
+            rows.energy.push(row.energy);
+        }
+        Ok(())
+    };
+    let ended = stepper.run_to_end(output.every, &mut observer, watch);
+    let status = match ended {
+        Err(error @ (Error::Interrupted { .. } | Error::Output(_))) => return Err(error),
+        Err(error) => Status::Failed { step: stepper.k(), t: stepper.t(), error },
+        Ok(()) => {
+            let (step, t) = (stepper.k(), stepper.t());
+            let row = stepper.row();
+            return Ok(match stepper.finish() {
+                Ok(summary) => Outcome {
+                    final_q: summary.final_q.clone(),
+                    final_p: summary.final_p.clone(),
+                    status: Status::Finished(Box::new(summary)),
+                    rows,
+                },
+                Err(error) => {
+                    Outcome { status: Status::Failed { step, t, error }, final_q: row.q, final_p: row.p, rows }
+                }
+            });
+        }
+    };
+    let row = stepper.row();
+    Ok(Outcome { status, final_q: row.q, final_p: row.p, rows })
+}
+
+/// Runs members `range` in parallel on the current rayon pool (`ThreadPool::install` chooses it),
+/// each as [`run_member`] runs it; `member(i)` gives member i's system and problem, `sink(i,
+/// outcome)` takes its outcome (in any order; from any thread).
+///
+/// An error of `member` (a member the caller cannot build) or of `sink` stops the ensemble with
+/// that error as [`Error::Output`]; a stop request stops it with [`Error::Interrupted`]. Members
+/// already running end first.
+pub fn run<'a>(
+    range: std::ops::Range<usize>,
+    member: &(dyn Fn(usize) -> Result<(MemberSystem<'a>, Problem), OutputError> + Sync),
+    method: &Method,
+    output: &OutputOptions,
+    keep_rows: bool,
+    sink: &(dyn Fn(usize, Outcome) -> Result<(), OutputError> + Sync),
+) -> Result<(), Error> {
+    range.into_par_iter().try_for_each(|i| {
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted { step: 0, t: 0.0 });
+        }
+        let (system, problem) = member(i).map_err(Error::Output)?;
+        let outcome = run_member(system.get(), &problem, method, output, keep_rows, &mut |_| Ok(()))?;
+        sink(i, outcome).map_err(Error::Output)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Mutex;
+
+    use super::*;
+    use crate::systems::ChargedParticle;
+    use crate::{Erased, Rule};
+
+    #[test]
+    fn members_equal_single_runs_bit_for_bit_and_a_failure_stays_in_its_member() {
+        let system = Erased(ChargedParticle::default());
+        let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
+        let output = OutputOptions { every: 3, wrap_angles: false };
+        let problem = |i: usize| {
+            let p = if i == 2 { f64::NAN } else { 1.0 + 0.1 * i as f64 };
+            Problem::new(0.2, 40, vec![0.0; 4], InitialMomentum::Momentum(vec![p, 0.0, 1.0, 1.0]))
+        };
+        let outcomes = Mutex::new(vec![]);
+        let member = |i| Ok((MemberSystem::Shared(&system as &dyn DynSystem), problem(i)));
+        let sink = |i, outcome| -> Result<(), OutputError> {
+            outcomes.lock().unwrap().push((i, outcome));
+            Ok(())
+        };
+        run(0..5, &member, &method, &output, true, &sink).unwrap();
+        let mut outcomes = outcomes.into_inner().unwrap();
+        outcomes.sort_by_key(|(i, _)| *i);
+        for (i, outcome) in &outcomes {
+            if *i == 2 {
+                assert!(matches!(outcome.status, Status::Failed { step: 0, error: Error::NonFinite { .. }, .. }));
+                continue;
+            }
+            let single = crate::solve(&system.0, &problem(*i), &method, &output).unwrap();
+            let Status::Finished(summary) = &outcome.status else { panic!("member {i}: {:?}", outcome.status) };
+            assert_eq!(summary.final_q, single.summary.final_q);
+            assert_eq!(summary.final_p, single.summary.final_p);
+            assert_eq!(outcome.final_q, single.summary.final_q);
+            let rows = outcome.rows.as_ref().unwrap();
+            assert_eq!(rows.t, single.t);
+            assert_eq!(rows.q, single.q.concat());
+            assert_eq!(rows.energy, single.energy);
+        }
+    }
+}
