@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 cargo test --workspace --release
 
-python3 -m pip install --quiet pytest numpy sympy
+# pandas and Dask (`distributed`) for the ensemble tests: a DataFrame of members, a LocalCluster.
+python3 -m pip install --quiet pytest numpy sympy pandas "dask[distributed]"
 python3 -m pip install --quiet .
 # From another directory, so that the installed package is imported, not `python/ddirac`.
 cd python/tests && python3 -m pytest -q

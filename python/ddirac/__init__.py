@@ -10,6 +10,9 @@ Lagrange–Poincaré–Dirac equations, and the reconstruction of the group moti
     run.t, run.q, run.p, run.energy, run.discrete_energy, run.momentum_map   # NumPy arrays
     run.summary                                                              # the dict of summary.json
 
+Many runs of one spec that differ in initial data or parameters run in parallel, locally or on a Dask
+cluster: ``ddirac.ensemble("spec.toml", members={"initial.q.phi1": np.linspace(1, 2, 100)})``.
+
 A spec file runs as ``ddirac run`` runs it: ``ddirac.load("spec.toml", overrides={"method.reduced":
 False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause;
 its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text``, ``span``),
@@ -19,10 +22,11 @@ its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text`
 from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
 from .system import System, builtin_systems
 from .convergence import convergence
+from .ensembles import EnsembleResult, ensemble
 from .run import Run, check, simulate
 from .spec import Spec, load
 
 __all__ = [
-    "ConvergenceError", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError", "System",
-    "builtin_systems", "check", "convergence", "load", "simulate", "__version__",
+    "ConvergenceError", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError",
+    "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
 ]

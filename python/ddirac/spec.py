@@ -15,7 +15,9 @@ def load(path, overrides=None):
     "time.steps": 1000, "initial.q.phi1": 2.0})``. Errors are :class:`ddirac.Error` with the
     diagnostic the command line prints (the spec line underlined)."""
     assignments = [f"{key}={_toml(value, key)}" for key, value in (overrides or {}).items()]
-    return Spec(_ddirac.load_spec(os.fspath(path), assignments), os.fspath(path))
+    spec = Spec(_ddirac.load_spec(os.fspath(path), assignments), os.fspath(path))
+    spec._assignments = assignments
+    return spec
 
 
 class Spec:
@@ -25,6 +27,7 @@ class Spec:
         from .system import System
 
         self._handle = handle
+        self._assignments = []
         self.path = path
         self.system = System._from_handle(handle.system)
         self.step, self.steps, q0, p0, v0 = handle.problem

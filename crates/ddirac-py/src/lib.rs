@@ -5,6 +5,7 @@
 //! Integration runs with the GIL released.
 
 mod check;
+mod ensemble;
 mod error;
 mod overhead;
 mod simulate;
@@ -28,6 +29,8 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
+    m.add_function(wrap_pyfunction!(ensemble::ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(ensemble::ensemble_members, m)?)?;
     m.add_function(wrap_pyfunction!(overhead::rust_seconds, m)?)?;
     m.add_class::<spec::LoadedSpec>()?;
     m.add_function(wrap_pyfunction!(spec::load_spec, m)?)?;

@@ -18,9 +18,13 @@ use crate::system::SystemHandle;
 
 /// A command-line error as `ddirac.Error`, with the diagnostic `ddirac run` prints (the spec line
 /// underlined), without colours.
-fn cli_error(error: CliError) -> PyErr {
+pub(crate) fn cli_error(error: CliError) -> PyErr {
     let error = match error {
         CliError::Integration(engine) => return crate::error::engine(engine),
+        // No spec text to quote: the message alone, unwrapped, so that it can be searched for.
+        CliError::Members { .. } | CliError::Merge(_) | CliError::Set { .. } => {
+            return SpecError::new_err(error.to_string())
+        }
         other => other,
     };
     let report: miette::Report = error.into();

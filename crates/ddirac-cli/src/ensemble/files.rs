@@ -318,10 +318,7 @@ const TRAJECTORY_FILES: [&str; 3] = ["q", "p", "energy"];
 impl Trajectories {
     fn create(dir: &Path, ensemble: &Ensemble, members: usize) -> Result<Self, FileError> {
         let (rows, n) = (ensemble.rows(), ensemble.coordinates().len());
-        let problem = &ensemble.base.plan.problem;
-        let every = ensemble.base.plan.output.every.max(1);
-        let mut t: Vec<f64> = (0..problem.steps).step_by(every).map(|k| k as f64 * problem.step).collect();
-        t.push(problem.steps as f64 * problem.step);
+        let t = ensemble.times();
         let path = dir.join("npy/t.npy");
         output::at(&path, npy::write(&path, "<f8", &[t.len() as u64], &npy::f64_bytes(&t)))?;
         let (m, r) = (members as u64, rows as u64);

@@ -214,6 +214,15 @@ impl Ensemble {
         steps.div_ceil(every) + 1
     }
 
+    /// The times of the rows each member reports ([`Ensemble::rows`] of them).
+    pub fn times(&self) -> Vec<f64> {
+        let problem = &self.base.plan.problem;
+        let every = self.base.plan.output.every.max(1);
+        let mut t: Vec<f64> = (0..problem.steps).step_by(every).map(|k| k as f64 * problem.step).collect();
+        t.push(problem.steps as f64 * problem.step);
+        t
+    }
+
     /// Member `i`'s system and problem.
     pub fn member(&self, i: usize) -> Result<(MemberSystem<'_>, Problem), CliError> {
         let values = self.members.row(i);

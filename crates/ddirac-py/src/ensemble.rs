@@ -1,0 +1,205 @@
+//! Ensembles from Python: the members of a spec (columns of values keyed as `--set` names them, or
+//! the spec's `[ensemble]` table) run on the command line's machinery ([`ddirac_cli::ensemble`])
+//! with the GIL released, and come back as NumPy arrays with a leading member axis. A chunk of the
+//! members (`offset`) is what a Dask task runs.
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{mpsc, Arc, Mutex};
+use std::time::Duration;
+
+use ddirac_cli::ensemble::{Ensemble, MembersFrom, Results, DIAGNOSTICS};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::error::raise;
+use crate::spec::cli_error;
+
+/// How often the calling thread looks for Python signals and reports progress.
+const POLL: Duration = Duration::from_millis(50);
+
+fn load(
+    path: PathBuf,
+    text: Option<String>,
+    set: &[String],
+    columns: Option<Vec<(String, Vec<f64>)>>,
+) -> PyResult<Ensemble> {
+    let text = match text {
+        Some(text) => text,
+        None => std::fs::read_to_string(&path)
+            .map_err(|e| raise(format!("cannot read the spec file `{}`: {e}", path.display())))?,
+    };
+    let from = columns.map_or(MembersFrom::Spec, MembersFrom::Columns);
+    Ensemble::from_text(&path, text, set, from).map_err(cli_error)
+}
+
+/// The members the spec's `[ensemble]` table generates: (keys, values as a members × keys array).
+#[pyfunction]
+#[pyo3(signature = (path, text, set))]
+pub fn ensemble_members<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    text: Option<String>,
+    set: Vec<String>,
+) -> PyResult<(Vec<String>, Bound<'py, PyAny>)> {
+    let ensemble = load(path, text, &set, None)?;
+    let keys: Vec<String> = ensemble.members.keys.iter().map(|k| k.name()).collect();
+    let (m, k) = (ensemble.members.len(), keys.len());
+    let values = PyArray1::from_vec(py, ensemble.members.values).reshape([m, k])?.into_any();
+    Ok((keys, values))
+}
+
+/// Runs the members given by `columns` (or the spec's `[ensemble]` table), numbered from `offset`,
+/// on `threads` threads (default: all cores), and returns their results as a dict of arrays.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, columns, offset=0, threads=None, trajectories=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn ensemble<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    text: Option<String>,
+    set: Vec<String>,
+    columns: Option<Vec<(String, Vec<f64>)>>,
+    offset: usize,
+    threads: Option<usize>,
+    trajectories: Option<bool>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut ensemble = load(path, text, &set, columns)?;
+    if let Some(t) = trajectories {
+        ensemble.trajectories = t;
+    }
+    let ensemble = Arc::new(ensemble);
+    let count = ensemble.members.len();
+    let (rows, n) = (ensemble.rows(), ensemble.coordinates().len());
+    let kept = Arc::new(Mutex::new(ensemble.trajectories.then(|| Kept::new(count, rows, n))));
+    let done = Arc::new(AtomicUsize::new(0));
+    let (work_ensemble, work_kept, work_done) = (ensemble.clone(), kept.clone(), done.clone());
+    let work = move || {
+        let keep = |offset: usize, r: &ddirac::ensemble::Rows| -> Result<(), ddirac::OutputError> {
+            if let Some(k) = work_kept.lock().expect("no panic while keeping rows").as_mut() {
+                k.put(offset, r);
+            }
+            Ok(())
+        };
+        let report = |d: usize| work_done.store(d, Ordering::Relaxed);
+        work_ensemble.run(0..count, threads, &keep, &report)
+    };
+    let mut results = poll(py, work, &mut |py| match &progress {
+        Some(callback) => callback.call1(py, (done.load(Ordering::Relaxed), count)).map(drop),
+        None => Ok(()),
+    })?
+    .map_err(cli_error)?;
+    for failure in &mut results.failures {
+        failure.member += offset;
+    }
+    let kept = kept.lock().expect("no panic while keeping rows").take();
+    arrays(py, &ensemble, results, kept, offset)
+}
+
+/// Runs `work` on a pooled thread with the GIL released; every [`POLL`] the calling thread runs
+/// Python's signal handlers (a raising one, Ctrl-C, stops the members before their next step) and
+/// `tick` (the progress callback; if it raises, the members stop too).
+fn poll<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce() -> T + Send + 'static,
+    tick: &mut (dyn FnMut(Python<'_>) -> PyResult<()> + Send),
+) -> PyResult<T> {
+    py.detach(|| {
+        let (sender, receiver) = mpsc::channel();
+        rayon::spawn(move || {
+            let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
+        });
+        let mut raised = None;
+        let result = loop {
+            match receiver.recv_timeout(POLL) {
+                Ok(result) => break result.map_err(|_| raise("an ensemble's thread panicked")),
+                Err(mpsc::RecvTimeoutError::Disconnected) => break Err(raise("the ensemble stopped without a result")),
+                Err(mpsc::RecvTimeoutError::Timeout) if raised.is_none() => {
+                    if let Err(e) = Python::attach(|py| py.check_signals().and_then(|()| tick(py))) {
+                        ddirac::interrupt::request();
+                        raised = Some(e);
+                    }
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+            }
+        };
+        if let Some(e) = raised {
+            ddirac::interrupt::clear();
+            return Err(e);
+        }
+        let _ = Python::attach(|py| tick(py));
+        result
+    })
+}
+
+/// The rows of every member, kept in memory.
+struct Kept {
+    rows: usize,
+    n: usize,
+    q: Vec<f64>,
+    p: Vec<f64>,
+    energy: Vec<f64>,
+}
+
+impl Kept {
+    fn new(members: usize, rows: usize, n: usize) -> Self {
+        let nan = |len| vec![f64::NAN; len];
+        Self { rows, n, q: nan(members * rows * n), p: nan(members * rows * n), energy: nan(members * rows) }
+    }
+
+    fn put(&mut self, offset: usize, r: &ddirac::ensemble::Rows) {
+        let (rows, n) = (self.rows, self.n);
+        let block = offset * rows * n;
+        self.q[block..block + r.q.len()].copy_from_slice(&r.q);
+        self.p[block..block + r.p.len()].copy_from_slice(&r.p);
+        self.energy[offset * rows..offset * rows + r.energy.len()].copy_from_slice(&r.energy);
+    }
+}
+
+/// The results as a dict of arrays and plain values.
+fn arrays<'py>(
+    py: Python<'py>,
+    ensemble: &Ensemble,
+    results: Results,
+    kept: Option<Kept>,
+    offset: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (m, n) = (results.len(), results.n);
+    let d = PyDict::new(py);
+    d.set_item("offset", offset)?;
+    d.set_item("coordinates", ensemble.coordinates())?;
+    let keys: Vec<String> = ensemble.members.keys.iter().map(|k| k.name()).collect();
+    d.set_item("members", PyArray1::from_vec(py, ensemble.members.values.clone()).reshape([m, keys.len()])?)?;
+    d.set_item("keys", keys)?;
+    d.set_item("final_q", PyArray1::from_vec(py, results.final_q).reshape([m, n])?)?;
+    d.set_item("final_p", PyArray1::from_vec(py, results.final_p).reshape([m, n])?)?;
+    d.set_item("finished", PyArray1::from_vec(py, results.finished))?;
+    d.set_item("steps", PyArray1::from_vec(py, results.steps))?;
+    let diagnostics = PyDict::new(py);
+    for ((name, _), column) in DIAGNOSTICS.iter().zip(results.diagnostics) {
+        diagnostics.set_item(*name, PyArray1::from_vec(py, column))?;
+    }
+    d.set_item("diagnostics", diagnostics)?;
+    let failures = PyList::empty(py);
+    for f in &results.failures {
+        let item = PyDict::new(py);
+        item.set_item("member", f.member)?;
+        item.set_item("step", f.step)?;
+        item.set_item("t", f.t)?;
+        item.set_item("error", &f.error)?;
+        failures.append(item)?;
+    }
+    d.set_item("failures", failures)?;
+    d.set_item("derivatives", results.derivatives.into_iter().collect::<Vec<_>>())?;
+    d.set_item("warnings", results.warnings.into_iter().collect::<Vec<_>>())?;
+    d.set_item("member_seconds", results.member_seconds)?;
+    if let Some(k) = kept {
+        d.set_item("t", PyArray1::from_vec(py, ensemble.times()))?;
+        d.set_item("q", PyArray1::from_vec(py, k.q).reshape([m, k.rows, n])?)?;
+        d.set_item("p", PyArray1::from_vec(py, k.p).reshape([m, k.rows, n])?)?;
+        d.set_item("energy", PyArray1::from_vec(py, k.energy).reshape([m, k.rows])?)?;
+    }
+    Ok(d)
+}

@@ -1,0 +1,169 @@
+"""Ensembles: many runs of one spec that differ in initial data and/or parameters, on local threads
+or on the workers of a Dask cluster (:func:`ensemble`)."""
+
+import os
+
+import numpy as np
+
+from . import _ddirac
+
+#: Per-member diagnostics, as ``ddirac ensemble`` names its arrays (NaN for a failed member).
+DIAGNOSTICS = (
+    "energy_error",            # max |H_k - H_0| over the reported rows
+    "energy_relative_error",   # energy_error / |H_0|
+    "momentum_map_drift",      # max |J_k - J_0| over all steps
+    "newton_iterations",       # Newton corrections over all steps
+    "newton_max_iterations",   # largest number of corrections in one step
+    "newton_max_residual",     # largest accepted residual norm
+    "reference_error",         # |q(T) - q_N| against the exact solution, where the system has one
+)
+
+
+class EnsembleResult:
+    """The results of an ensemble, arrays with a leading member axis.
+
+    ``final_q``, ``final_p`` (members × n: q_N and p_N, or the state of the failed step),
+    ``status`` (``"ok"`` or ``"failed"`` per member), ``steps`` (steps taken), ``diagnostics`` (a dict
+    of arrays, :data:`DIAGNOSTICS`), ``failures`` (a list of dicts ``member``, ``step``, ``t``,
+    ``error``), ``members`` (a dict of the varied values by key), ``coordinates``; with trajectories
+    ``t`` (rows), ``q`` and ``p`` (members × rows × n) and ``energy`` (members × rows), NaN after a
+    failed member's last row.
+    """
+
+    def __init__(self, parts):
+        first = parts[0]
+        self.coordinates = list(first["coordinates"])
+        self.keys = list(first["keys"])
+        cat = lambda name: np.concatenate([p[name] for p in parts])  # noqa: E731
+        values = cat("members")
+        self.members = {key: values[:, i] for i, key in enumerate(self.keys)}
+        self.final_q = cat("final_q")
+        self.final_p = cat("final_p")
+        finished = cat("finished")
+        self.status = np.where(finished, "ok", "failed")
+        self.steps = cat("steps")
+        self.diagnostics = {name: np.concatenate([p["diagnostics"][name] for p in parts]) for name in DIAGNOSTICS}
+        self.failures = [f for p in parts for f in p["failures"]]
+        self.derivatives = _sum_counts(p["derivatives"] for p in parts)
+        self.warnings = _sum_counts(p["warnings"] for p in parts)
+        self.member_seconds = sum(p["member_seconds"] for p in parts)
+        if "q" in first:
+            self.t = first["t"]
+            self.q = cat("q")
+            self.p = cat("p")
+            self.energy = cat("energy")
+
+    def __len__(self):
+        return len(self.status)
+
+    def __repr__(self):
+        failed = int(np.sum(self.status == "failed"))
+        return f"ddirac.EnsembleResult(members={len(self)}, failed={failed}, coordinates={self.coordinates})"
+
+    def columns(self):
+        """The final table as ``final.csv`` has it: ``member``, ``status``, each coordinate,
+        ``p_<coordinate>``, then the diagnostics."""
+        out = {"member": np.arange(len(self)), "status": self.status}
+        out.update({name: self.final_q[:, i] for i, name in enumerate(self.coordinates)})
+        out.update({f"p_{name}": self.final_p[:, i] for i, name in enumerate(self.coordinates)})
+        out.update(self.diagnostics)
+        return out
+
+    def to_pandas(self):
+        """:meth:`columns` as a ``pandas.DataFrame`` (pandas is imported only here)."""
+        import pandas
+
+        return pandas.DataFrame(self.columns())
+
+
+def _sum_counts(lists):
+    total = {}
+    for pairs in lists:
+        for key, count in pairs:
+            total[key] = total.get(key, 0) + count
+    return total
+
+
+def _source(spec):
+    """(path, text, --set assignments) of a spec path or a :class:`ddirac.Spec`."""
+    from .spec import Spec
+
+    if isinstance(spec, Spec):
+        path, assignments = spec.path, list(spec._assignments)
+    else:
+        path, assignments = os.fspath(spec), []
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    return path, text, assignments
+
+
+def _columns(members):
+    """Members (a dict of equal-length arrays or a pandas DataFrame) as a list of (key, values)."""
+    if hasattr(members, "columns") and hasattr(members, "to_numpy"):  # a DataFrame
+        items = [(str(c), members[c].to_numpy()) for c in members.columns]
+    elif isinstance(members, dict):
+        items = [(str(k), v) for k, v in members.items()]
+    else:
+        raise _ddirac.Error("`members` is a dict of equal-length arrays keyed by spec keys, or a pandas DataFrame")
+    columns = []
+    for key, values in items:
+        array = np.asarray(values, dtype=float)
+        if array.ndim != 1:
+            raise _ddirac.Error(f"the members of `{key}` are not a 1-d array (shape {array.shape})")
+        columns.append((key, array.tolist()))
+    return columns
+
+
+def _chunks(count, parts):
+    """``parts`` contiguous ranges of ``range(count)``, as ``ddirac ensemble --shard`` cuts them."""
+    return [(i * count // parts, (i + 1) * count // parts) for i in range(parts) if i * count // parts < (i + 1) * count // parts]
+
+
+def _run_chunk(path, text, assignments, columns, offset, threads, trajectories):
+    """One Dask task: the members ``columns`` (numbered from ``offset``) on this worker."""
+    from . import _ddirac as core
+
+    return core.ensemble(path, text, assignments, columns, offset, threads, trajectories, None)
+
+
+def ensemble(spec, members=None, client=None, threads=None, trajectories=None, chunks=None, progress=None):
+    """Runs the members of ``spec`` (a spec path or a :class:`ddirac.Spec` from :func:`ddirac.load`) and
+    returns an :class:`EnsembleResult`.
+
+    ``members`` is a dict of equal-length arrays keyed as ``--set`` names the values
+    (``initial.q.<coordinate>``, ``initial.p.<coordinate>``, ``initial.v.<coordinate>``,
+    ``parameters.<name>``), or a pandas DataFrame with those columns; without it the spec's
+    ``[ensemble]`` table generates them. Member k equals the single run of the spec with its values
+    set, bit for bit. A member that fails is recorded (``status``, ``failures``) and the others go on.
+
+    Without ``client`` the members run on ``threads`` local threads (default: all cores) with the GIL
+    released; ``progress`` is then called as ``progress(done, members)`` about twenty times a second.
+    With a ``dask.distributed.Client`` they are cut into ``chunks`` contiguous parts (default: four per
+    worker thread), each a task that runs the Rust core on a worker (one thread per task, the GIL
+    released), and the parts come back as the same arrays, bit for bit equal to the local run; a chunk
+    whose worker dies is run again elsewhere by Dask. ``trajectories=True`` also returns every member's
+    rows (at the spec's ``output.every``); the default is the spec's ``[ensemble] trajectories``.
+    """
+    path, text, assignments = _source(spec)
+    if members is None:
+        keys, values = _ddirac.ensemble_members(path, text, assignments)
+        columns = [(key, values[:, i].tolist()) for i, key in enumerate(keys)]
+    else:
+        columns = _columns(members)
+    if client is None:
+        parts = [_ddirac.ensemble(path, text, assignments, columns, 0, threads, trajectories, progress)]
+        return EnsembleResult(parts)
+    count = len(columns[0][1]) if columns else 0
+    if count == 0:
+        raise _ddirac.Error("the ensemble has no members")
+    if chunks is None:
+        workers = client.scheduler_info().get("workers", {})
+        slots = sum(w.get("nthreads", 1) for w in workers.values()) or 1
+        chunks = 4 * slots
+    futures = []
+    for start, end in _chunks(count, max(1, min(int(chunks), count))):
+        part = [(key, values[start:end]) for key, values in columns]
+        futures.append(client.submit(_run_chunk, path, text, assignments, part, start, 1, trajectories,
+                                     key=f"ddirac-ensemble-{os.getpid()}-{id(futures)}-{start}"))
+    parts = client.gather(futures)
+    return EnsembleResult(parts)
