@@ -71,5 +71,5 @@ def ensemble(
     offset: int = 0,
     threads: Optional[int] = None,
     trajectories: Optional[bool] = None,
-    progress: Optional[Callable[[int, int], None]] = None,
+    progress: Optional[Callable[[int], None]] = None,
 ) -> dict[str, Any]: ...

@@ -137,7 +137,8 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
     set, bit for bit. A member that fails is recorded (``status``, ``failures``) and the others go on.
 
     Without ``client`` the members run on ``threads`` local threads (default: all cores) with the GIL
-    released; ``progress`` is then called as ``progress(done, members)`` about twenty times a second.
+    released, with a progress bar (``progress=True``; by default only in a notebook) or a callback
+    ``progress(done, members)`` called about twenty times a second.
     With a ``dask.distributed.Client`` they are cut into ``chunks`` contiguous parts (default: four per
     worker thread), each a task that runs the Rust core on a worker (one thread per task, the GIL
     released), and the parts come back as the same arrays, bit for bit equal to the local run; a chunk
@@ -151,7 +152,14 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
     else:
         columns = _columns(members)
     if client is None:
-        parts = [_ddirac.ensemble(path, text, assignments, columns, 0, threads, trajectories, progress)]
+        from .progress import callback
+
+        report, close = callback(progress, len(columns[0][1]) if columns else 0, unit="member")
+        try:
+            parts = [_ddirac.ensemble(path, text, assignments, columns, 0, threads, trajectories, report)]
+        finally:
+            if close is not None:
+                close()
         return EnsembleResult(parts)
     count = len(columns[0][1]) if columns else 0
     if count == 0:

@@ -22,14 +22,14 @@ def in_notebook():
 class Bar:
     """A progress bar over ``steps`` steps; ``update(k)`` moves it, ``close()`` ends it."""
 
-    def __init__(self, steps, description="ddirac"):
+    def __init__(self, steps, description="ddirac", unit="step"):
         self.steps = steps
         try:
             from tqdm.auto import tqdm
         except ImportError:
             self._tqdm = None
         else:
-            self._tqdm = tqdm(total=steps, desc=description, unit="step", leave=False)
+            self._tqdm = tqdm(total=steps, desc=description, unit=unit, leave=False)
         self._shown = False
 
     def update(self, k):
@@ -50,13 +50,14 @@ class Bar:
             sys.stderr.flush()
 
 
-def callback(progress, steps):
-    """The engine's callback ``f(k)`` and a closer for the ``progress`` argument, or (None, None)."""
+def callback(progress, steps, unit="step"):
+    """The engine's callback ``f(k)`` and a closer for the ``progress`` argument, or (None, None);
+    ``steps`` counts ``unit``\ s (steps of a run, members of an ensemble)."""
     if progress is None:
         progress = in_notebook()
     if progress is False:
         return None, None
     if callable(progress) and progress is not True:
         return (lambda k: progress(k, steps)), None
-    bar = Bar(steps)
+    bar = Bar(steps, unit=unit)
     return bar.update, bar.close

@@ -87,7 +87,7 @@ pub fn ensemble<'py>(
         work_ensemble.run(0..count, threads, &keep, &report)
     };
     let mut results = poll(py, work, &mut |py| match &progress {
-        Some(callback) => callback.call1(py, (done.load(Ordering::Relaxed), count)).map(drop),
+        Some(callback) => callback.call1(py, (done.load(Ordering::Relaxed),)).map(drop),
         None => Ok(()),
     })?
     .map_err(cli_error)?;

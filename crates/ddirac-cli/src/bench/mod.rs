@@ -17,12 +17,15 @@
 //! - `expression`: the double spherical pendulum's Lagrangian written as text against the Rust one
 //!   ([`expression`]);
 //! - `linearity`: time per step for 10³, 10⁴ and 10⁵ steps ([`linearity`]);
-//! - `scaling`: time per step of a chain of N pendula for N = 2 … 50 ([`scaling`]).
+//! - `scaling`: time per step of a chain of N pendula for N = 2 … 50 ([`scaling`]);
+//! - `ensemble`: members on 2 threads against 1, 10³ short members against the sum of their steps,
+//!   and the peak memory of `ddirac ensemble` against its output ([`ensemble`]).
 //!
 //! `--json PATH` writes every measurement, round by round, through a temporary file renamed into
 //! place when complete.
 
 mod charged_particle;
+mod ensemble;
 mod expression;
 mod harness;
 mod linearity;
@@ -79,17 +82,20 @@ pub enum Group {
     Linearity,
     /// Time per step against the number of coordinates.
     Scaling,
+    /// Members on threads, set-up amortised, memory of ensembles.
+    Ensemble,
 }
 
 impl Group {
     /// Every group, in the order they run.
-    const ALL: [Group; 6] = [
+    const ALL: [Group; 7] = [
         Group::Reduction,
         Group::ChargedParticle,
         Group::WorkPrecision,
         Group::Expression,
         Group::Linearity,
         Group::Scaling,
+        Group::Ensemble,
     ];
 
     /// The name on the command line and in the JSON output.
@@ -101,6 +107,7 @@ impl Group {
             Group::Expression => "expression",
             Group::Linearity => "linearity",
             Group::Scaling => "scaling",
+            Group::Ensemble => "ensemble",
         }
     }
 
@@ -112,6 +119,7 @@ impl Group {
             Group::Expression => expression::run(settings),
             Group::Linearity => linearity::run(settings),
             Group::Scaling => scaling::run(settings),
+            Group::Ensemble => ensemble::run(settings),
         }
     }
 }
