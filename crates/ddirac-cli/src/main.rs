@@ -122,10 +122,10 @@ enum Command {
     /// values set. A member that fails is recorded (status `failed`, reason in summary.json) and the
     /// others go on. The output directory defaults to out/<spec file stem>-ensemble.
     #[command(after_help = "Examples:
-  ddirac ensemble examples/ensemble_poincare.toml
+  ddirac ensemble examples/magnetic_mirror.toml
   ddirac ensemble examples/charged_particle.toml --members members.csv --out out/sweep --threads 8
-  ddirac ensemble examples/ensemble_poincare.toml --out out/poincare --shard $SLURM_ARRAY_TASK_ID/16
-  ddirac merge out/poincare/shard-*-of-16 --out out/poincare/all")]
+  ddirac ensemble examples/magnetic_mirror.toml --out out/mirror --shard $SLURM_ARRAY_TASK_ID/16
+  ddirac merge out/mirror/shard-*-of-16 --out out/mirror/all")]
     Ensemble {
         #[command(flatten)]
         target: SpecTarget,
@@ -144,7 +144,7 @@ enum Command {
     /// Join the directories of the shards of one ensemble (`ddirac ensemble --shard I/N`) into one,
     /// equal to the unsharded run's files.
     #[command(after_help = "Example:
-  ddirac merge out/poincare/shard-*-of-16 --out out/poincare/all")]
+  ddirac merge out/mirror/shard-*-of-16 --out out/mirror/all")]
     Merge {
         /// The shard directories, in any order.
         #[arg(required = true, num_args = 1..)]

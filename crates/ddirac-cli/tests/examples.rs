@@ -278,3 +278,23 @@ fn reducing_point_vortices_is_refused_before_anything_is_written() {
         &["the Jacobian is singular"],
     );
 }
+
+#[test]
+fn magnetic_mirror_keeps_p_phi_and_energy_and_reflects_a_trapped_particle_near_its_adiabatic_mirror_point() {
+    let dir = TempDir::new("magnetic-mirror");
+    let run = succeed(&example("magnetic_mirror.toml"), &[], &dir);
+    // H = (p_r² + p_z²)/2m + (p_phi − r A_phi)²/(2 m r²) at z = 0, where r A_phi = B0 r²/2.
+    let (r, p_r, p_z, p_phi) = (1.2f64, 0.3, 0.1, 1.0);
+    let h0 = (p_r * p_r + p_z * p_z) / 2.0 + (p_phi - 0.5 * r * r).powi(2) / (2.0 * r * r);
+    let energy = run.column("energy");
+    assert!((energy[0] - h0).abs() < 1e-15, "{} against {h0}", energy[0]);
+    // The magnetic field does no work: only the scheme's bounded oscillation remains.
+    assert!(relative_spread(energy) < 1e-4, "{}", relative_spread(energy));
+    assert_eq!(drift(run.column("p_phi")), 0.0);
+    // Adiabatic invariant μ = E_⊥ / B: reflected where B(z)/B0 = 1 + 3 z²/(16 + z²) = H / E_⊥,0,
+    // E_⊥,0 = H − p_z²/2 (z ≈ 0.62); the guiding centre's own excursion makes it approximate.
+    let ratio = h0 / (h0 - p_z * p_z / 2.0);
+    let mirror = (16.0 * (ratio - 1.0) / (3.0 - (ratio - 1.0))).sqrt();
+    let reached = run.column("z").iter().fold(0.0f64, |m, z| m.max(z.abs()));
+    assert!((reached - mirror).abs() < 0.25 * mirror, "reached |z| = {reached}, mirror point {mirror}");
+}
