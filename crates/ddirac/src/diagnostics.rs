@@ -153,11 +153,14 @@ pub enum WarningKind {
     /// ∂²L/∂v² has become near-singular: the coordinates are singular there (a pole of spherical
     /// coordinates), and the trajectory near it cannot be trusted.
     SingularChart,
+    /// The energy moved away from its initial value by more than [`crate::ENERGY_DRIFT`] of its scale:
+    /// far more than the bounded error of a step that resolves the motion.
+    EnergyDrift,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
-    /// `newton_fallback`, `under_resolved`, `singular_chart`.
+    /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
@@ -166,6 +169,7 @@ impl WarningKind {
             WarningKind::NewtonFallback => "newton_fallback",
             WarningKind::UnderResolved => "under_resolved",
             WarningKind::SingularChart => "singular_chart",
+            WarningKind::EnergyDrift => "energy_drift",
         }
     }
 }

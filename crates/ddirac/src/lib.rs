@@ -50,7 +50,7 @@ pub mod systems;
 
 pub use check::{check, CheckReport, Finding, CONSTRAINT_TOLERANCE};
 pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
-pub use energy_jump::{EnergyJump, JumpAction};
+pub use energy_jump::{EnergyJump, JumpAction, ENERGY_DRIFT};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased};
 pub use error::{Error, Hypothesis, Input, Time};
 pub use integrator::{integrate, integrate_watched, solve, OutputError, WATCH_STEPS};

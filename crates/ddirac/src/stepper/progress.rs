@@ -162,6 +162,9 @@ impl<const N: usize> Progress<N> {
         self.predictor.push(z);
         self.k += 1;
         record.drift(split, &self.momenta);
+        if let Some(drift) = self.monitor.take_drift() {
+            record.warnings.push(Warning::new(WarningKind::EnergyDrift, Some(drift.at), drift.describe()));
+        }
         if let Some((jump, cause)) = jump {
             jumped(jump, cause, action, &mut record.warnings)?;
         }
