@@ -218,16 +218,12 @@ impl Monitor {
     pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64) -> Option<Jump> {
         self.scale_sum += energy.abs().max(kinetic);
         self.steps += 1.0;
-        // |E − E_first| > ENERGY_DRIFT · max(first scale, mean scale), without a division.
-        let departure = (energy - self.first).abs() * self.steps;
-        if departure > ENERGY_DRIFT * (self.first_scale * self.steps).max(self.scale_sum) && !self.drifted {
-            self.drifted(at, energy);
-        }
         let before = std::mem::replace(&mut self.previous, energy);
         let change = (energy - before).abs();
         // An ordinary step, by the test below written without a division.
         let ordinary = change <= self.threshold || change * self.count as f64 <= RATIO * self.sum;
         if ordinary && self.excursion.is_none() && self.count >= WARM_UP {
+            self.watch_drift(at, energy);
             self.sum += change;
             self.count += 1;
             if energy.abs().max(kinetic) > self.scale {
@@ -236,6 +232,17 @@ impl Monitor {
             return None;
         }
         self.unusual(at, energy, before, change, kinetic)
+    }
+
+    /// Reports a drift at step `at` (an ordinary step: a jump is reported as one, and the energy's
+    /// level after it is the new reference).
+    #[inline]
+    fn watch_drift(&mut self, at: (usize, f64), energy: f64) {
+        // |E − E_first| > ENERGY_DRIFT · max(first scale, mean scale), without a division.
+        let departure = (energy - self.first).abs() * self.steps;
+        if departure > ENERGY_DRIFT * (self.first_scale * self.steps).max(self.scale_sum) && !self.drifted {
+            self.drifted(at, energy);
+        }
     }
 
     /// Records the drift of step `at`.
@@ -279,6 +286,8 @@ impl Monitor {
                 return None;
             }
             let excursion = self.excursion.take().expect("under way");
+            // The jump is reported; a later drift is measured from the level after it.
+            self.first = energy;
             return Some(self.jump(excursion, energy));
         }
         let starts = if self.count < WARM_UP {
@@ -289,6 +298,9 @@ impl Monitor {
         if starts || !change.is_finite() {
             self.excursion = Some(Excursion { at, level: before, steps: 0, calm: 0 });
         } else {
+            if self.count >= WARM_UP {
+                self.watch_drift(at, energy);
+            }
             self.sum += change;
             self.count += 1;
             self.rescale(self.scale.max(energy.abs()).max(kinetic));
