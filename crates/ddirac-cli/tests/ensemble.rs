@@ -41,7 +41,7 @@ fn summary(dir: &Path) -> Value {
 
 /// Runs an ensemble from a members file and checks every member against `ddirac run` with its
 /// values set: the final q and p, and with trajectories the rows of q, bit for bit.
-fn members_equal_single_runs(spec: &str, sets: &[&str], members: &str, expect_path: &str) {
+fn members_equal_single_runs(spec: &str, sets: &[&str], members: &str, expect_path: &str, renewed: bool) {
     let dir = TempDir::new("ensemble-single");
     let file = dir.file("members.csv", members);
     let out = dir.0.join("ens");
@@ -52,6 +52,10 @@ fn members_equal_single_runs(spec: &str, sets: &[&str], members: &str, expect_pa
         "--out",
         out.to_str().unwrap(),
         "--quiet",
+        // One thread: members run one after another and renew one stepper where its derivatives
+        // serve them.
+        "--threads",
+        "1",
         "--set",
         "ensemble.trajectories=true",
     ];
@@ -62,6 +66,8 @@ fn members_equal_single_runs(spec: &str, sets: &[&str], members: &str, expect_pa
     assert!(output.status.success(), "{}", stderr(&output));
     let s = summary(&out);
     assert!(s["derivatives"].get(expect_path).is_some(), "{}", s["derivatives"]);
+    let renewals = s["steppers"]["renewed"].as_u64().unwrap();
+    assert_eq!(renewals > 0, renewed, "{}", s["steppers"]);
     let rows = final_rows(&out);
     let header: Vec<String> = members.lines().next().unwrap().split(',').map(str::to_owned).collect();
     let q = npy::read(&out.join("npy/q.npy")).unwrap();
@@ -97,26 +103,24 @@ fn members_that_differ_in_initial_data_equal_their_single_runs_bit_for_bit() {
     // 6000 steps: compiled derivatives under `auto`, programs shared by the members through the cache.
     let members = "initial.q.phi1,initial.p.vartheta2,initial.p.vartheta1\n2.25,1.0,0.0\n2.0,0.5,0.3\n1.5,0.8,-0.2\n";
     let sets = ["time.steps=6000", "time.duration=60.0", "output.every=50"];
-    members_equal_single_runs(&example("double_spherical_pendulum.toml"), &sets, members, "compiled");
+    members_equal_single_runs(&example("double_spherical_pendulum.toml"), &sets, members, "compiled", true);
 }
 
 #[test]
 fn members_with_their_own_conserved_momentum_equal_their_single_runs() {
     // The charged particle's reduced step has a closed form that holds μ = p_theta as a constant.
     let members = "initial.p.theta,initial.p.q1\n1.0,1.0\n0.5,1.0\n2.0,0.3\n";
-    members_equal_single_runs(
-        &example("charged_particle.toml"),
-        &["method.derivatives=\"compiled\""],
-        members,
-        "compiled",
-    );
+    // Each member prepares its own stepper (its closed form holds its μ).
+    let sets = ["method.derivatives=\"compiled\""];
+    members_equal_single_runs(&example("charged_particle.toml"), &sets, members, "compiled", false);
 }
 
 #[test]
 fn members_that_differ_in_parameters_equal_their_single_runs() {
     let members = "parameters.B0,initial.q.x\n1.0,0.0\n0.5,0.1\n2.0,-0.3\n";
     let sets = ["method.derivatives=\"compiled\""];
-    members_equal_single_runs(&example("charged_particle_expression.toml"), &sets, members, "compiled");
+    // Each member has its own system (its own B0); the compiled programs come from the cache.
+    members_equal_single_runs(&example("charged_particle_expression.toml"), &sets, members, "compiled", false);
 }
 
 /// The files of two ensemble directories, but summary.json, byte for byte.

@@ -195,6 +195,7 @@ fn arrays<'py>(
     d.set_item("derivatives", results.derivatives.into_iter().collect::<Vec<_>>())?;
     d.set_item("warnings", results.warnings.into_iter().collect::<Vec<_>>())?;
     d.set_item("member_seconds", results.member_seconds)?;
+    d.set_item("steppers", (results.preparations.prepared, results.preparations.renewed))?;
     if let Some(k) = kept {
         d.set_item("t", PyArray1::from_vec(py, ensemble.times()))?;
         d.set_item("q", PyArray1::from_vec(py, k.q).reshape([m, k.rows, n])?)?;

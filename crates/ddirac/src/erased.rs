@@ -159,6 +159,13 @@ pub trait DynStepper {
 
     /// The summary of the run; see [`Stepper::finish`].
     fn finish(self: Box<Self>) -> Result<Summary, Error>;
+
+    /// The summary of the run, keeping the stepper; see [`Stepper::summary`].
+    fn summary(&mut self) -> Result<Summary, Error>;
+
+    /// Prepares the stepper for another problem, keeping its derivatives when they serve it
+    /// unchanged; see [`Stepper::renew`].
+    fn renew(&mut self, problem: &Problem) -> Result<bool, Error>;
 }
 
 impl<S: System<N>, const N: usize> DynStepper for Stepper<'_, S, N> {
@@ -215,6 +222,14 @@ impl<S: System<N>, const N: usize> DynStepper for Stepper<'_, S, N> {
 
     fn finish(self: Box<Self>) -> Result<Summary, Error> {
         Stepper::finish(*self)
+    }
+
+    fn summary(&mut self) -> Result<Summary, Error> {
+        Stepper::summary(self)
+    }
+
+    fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
+        Stepper::renew(self, problem)
     }
 }
 

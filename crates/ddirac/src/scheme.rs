@@ -175,6 +175,34 @@ impl<const N: usize> StepDerivatives<N> {
         }
     }
 
+    /// Whether these derivatives, prepared at one first step under `choice` for `steps` steps, are
+    /// those [`StepDerivatives::new`] would prepare at any other first step that they pass
+    /// [`StepDerivatives::serve_first_step`] at: dual numbers chosen without looking at the first
+    /// step (asked for, or a run too short to compile), or compiled programs of a trace without
+    /// guards and without a closed-form step (a trace without guards gives the same programs at every
+    /// point; a closed form holds the first step's pivot order and conserved momenta).
+    pub fn independent_of_first_step(&self, choice: Differentiation, steps: usize) -> bool {
+        match self {
+            Self::Dual => {
+                choice == Differentiation::Dual || (choice == Differentiation::Auto && steps < AUTO_MIN_STEPS)
+            }
+            Self::Compiled { pair, linear } => linear.is_none() && pair.is_unguarded(),
+        }
+    }
+
+    /// Whether these derivatives pass, at the first step (`base`, `z`), the check against dual
+    /// numbers that [`StepDerivatives::new`] makes at the step it prepares them at.
+    pub fn serve_first_step(&self, scheme: &impl Scheme<N>, base: &[f64; N], z: &[f64; N]) -> bool {
+        match self {
+            Self::Dual => true,
+            Self::Compiled { pair, .. } => {
+                let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
+                let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
+                pair.check_against(base, z, (first, dual.dadb), 1e-9).is_ok()
+            }
+        }
+    }
+
     /// The compiled closed-form step, if the run has one.
     #[inline]
     pub fn linear_step(&self) -> Option<&LinearStep<N>> {

@@ -79,6 +79,7 @@ fn threads(settings: &Settings) -> Result<Comparison, miette::Report> {
                 }
             };
             pool.install(|| ddirac::ensemble::run(0..problems.len(), &member, &method, &LAST_ROW_ONLY, false, &sink))
+                .map(drop)
                 .map_err(|e| miette::miette!("a member of the threads benchmark failed: {e}"))
         };
         Contender::new(format!("{threads} thread{}", if threads == 1 { "" } else { "s" }), members * steps, run)

@@ -65,6 +65,15 @@ pub struct ShardJson {
     pub end: usize,
 }
 
+/// How the members' steppers were made.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct Steppers {
+    /// Members that prepared their own.
+    pub prepared: usize,
+    /// Members that renewed the one before them.
+    pub renewed: usize,
+}
+
 /// `summary.json` of an ensemble.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SummaryJson {
@@ -102,6 +111,9 @@ pub struct SummaryJson {
     pub warnings: BTreeMap<String, usize>,
     /// Threads used.
     pub threads: usize,
+    /// Members that prepared a stepper of their own (`prepared`) and members that renewed the
+    /// stepper of the member before them on their thread, sharing its derivatives (`renewed`).
+    pub steppers: Steppers,
     /// The sum of the members' own wall times, seconds.
     pub member_seconds: f64,
     /// Wall time of the command, seconds.
@@ -176,6 +188,7 @@ pub fn command(options: &Options) -> Result<(), CliError> {
         derivatives: results.derivatives.clone(),
         warnings: results.warnings.clone(),
         threads,
+        steppers: Steppers { prepared: results.preparations.prepared, renewed: results.preparations.renewed },
         member_seconds: results.member_seconds,
         total_wall_seconds: started.elapsed().as_secs_f64(),
     };
@@ -227,6 +240,11 @@ fn human(summary: &SummaryJson, dir: &Path) -> String {
     text.push_str(&format!("  finished         {}\n  failed           {}\n", summary.finished, summary.failed));
     let paths: Vec<String> = summary.derivatives.iter().map(|(p, n)| format!("{p} ({n})")).collect();
     text.push_str(&format!("  derivatives      {}\n", paths.join(", ")));
+    let s = summary.steppers;
+    text.push_str(&format!(
+        "  steppers         {} prepared, {} renewed from the member before\n",
+        s.prepared, s.renewed
+    ));
     text.push_str(&format!(
         "  wall             {:.3} s on {} threads (members' own time {:.3} s)",
         summary.total_wall_seconds, summary.threads, summary.member_seconds
@@ -467,6 +485,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path, quiet: bool) -> Result<(), CliError> 
     merged.failures = parts.iter().flat_map(|(_, s)| s.failures.clone()).collect();
     merged.member_seconds = parts.iter().map(|(_, s)| s.member_seconds).sum();
     merged.threads = parts.iter().map(|(_, s)| s.threads).max().unwrap_or(1);
+    merged.steppers = Steppers {
+        prepared: parts.iter().map(|(_, s)| s.steppers.prepared).sum(),
+        renewed: parts.iter().map(|(_, s)| s.steppers.renewed).sum(),
+    };
     let sum = |get: fn(&SummaryJson) -> &BTreeMap<String, usize>| {
         let mut total: BTreeMap<String, usize> = BTreeMap::new();
         for (_, s) in &parts {

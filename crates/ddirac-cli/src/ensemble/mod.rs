@@ -105,6 +105,9 @@ pub struct Results {
     pub warnings: BTreeMap<String, usize>,
     /// The sum of the members' own wall times (set-up and steps), seconds.
     pub member_seconds: f64,
+    /// How many members prepared a stepper of their own, and how many renewed the stepper of the
+    /// member before them on their thread (sharing its traced and compiled derivatives).
+    pub preparations: ddirac::ensemble::Preparations,
 }
 
 impl Results {
@@ -283,7 +286,11 @@ impl Ensemble {
         let ran = pool
             .install(|| ddirac::ensemble::run(range, &member, &plan.method, &plan.output, self.trajectories, &sink));
         match ran {
-            Ok(()) => Ok(results.into_inner().expect("no panic while recording")),
+            Ok(preparations) => {
+                let mut results = results.into_inner().expect("no panic while recording");
+                results.preparations = preparations;
+                Ok(results)
+            }
             Err(Error::Output(inner)) => Err(match inner.downcast::<CliError>() {
                 Ok(cli) => *cli,
                 Err(other) => match other.downcast::<crate::output::FileError>() {

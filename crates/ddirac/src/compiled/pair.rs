@@ -76,6 +76,11 @@ impl<const N: usize> std::fmt::Debug for CompiledPair<N> {
 }
 
 impl<const N: usize> CompiledPair<N> {
+    /// Whether the trace had no guards: then its programs are those of a trace at any point.
+    pub fn is_unguarded(&self) -> bool {
+        self.guards.is_empty()
+    }
+
     /// Traces `f` at (`base`, a = 0, `b`), differentiates it and compiles both programs.
     pub fn new<F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<Self, CompileError>
     where

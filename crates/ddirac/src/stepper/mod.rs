@@ -146,6 +146,8 @@ struct Equipped<Sc, const N: usize> {
     /// Whether the closed-form step, if there is one, serves the current state: its conserved
     /// momenta are those it was prepared with.
     closed_form: bool,
+    /// Whether the derivatives serve other problems unchanged ([`Stepper::renew`]).
+    renewable: bool,
 }
 
 /// `$body` with `$e` bound to the run's [`Equipped`] scheme, whichever it is.
@@ -379,16 +381,61 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         Ok(())
     }
 
+    /// Prepares this stepper for `problem` as [`Stepper::new`] prepares a new stepper of the same
+    /// system and method, keeping the derivatives when they serve the problem unchanged (an
+    /// ensemble's members that differ in initial data trace and compile once): `Ok(true)` then, and
+    /// the run that follows is that of a new stepper, bit for bit. `Ok(false)` when a new stepper
+    /// might differ — another step size or number of steps, a compiled closed-form step (it holds the
+    /// first step's conserved momenta), a trace with guards, compiled programs that fail their check
+    /// against dual numbers at the new first step, dual numbers chosen at the first step — and the
+    /// caller makes a new stepper. An error is the one [`Stepper::new`] gives for `problem` (its input
+    /// and the check of the method's hypotheses near its initial data are tested anew).
+    pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
+        let (h, steps) = (problem.step, problem.steps);
+        let renewable = equipped!(&self.schemes, e => e.renewable);
+        if h.to_bits() != self.context.h.to_bits() || steps != self.context.steps || !renewable {
+            return Ok(false);
+        }
+        let (system, method) = (self.context.system, &self.context.method);
+        let setup = Setup::new(system, problem, method)?;
+        let check_warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
+        let started = Instant::now();
+        let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
+        let (kinds, split) = (self.context.kinds, &self.context.split);
+        let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
+        let mut progress =
+            equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, setup.dq0, kinds, split, method, warnings));
+        let z = progress.predictor.predict().into();
+        if !equipped!(&self.schemes, e => e.derivatives.serve_first_step(&e.scheme, &e.scheme.base(progress.config.base()), &z))
+        {
+            return Ok(false);
+        }
+        progress.kept = self.fresh_kept.clone();
+        self.progress = progress;
+        self.check_warnings = check_warnings;
+        self.context.legendre_at_start = legendre_at_start;
+        self.started = started;
+        Ok(true)
+    }
+
     /// The summary of the run up to the current step: the energy watch's last verdict (an error
     /// under [`crate::JumpAction::Fail`] when the energy jumped and did not come back), final state,
     /// statistics, Newton counts and warnings.
-    pub fn finish(self) -> Result<Summary, Error> {
-        let Progress { k, config, momenta, mut monitor, mut record, .. } = self.progress;
+    pub fn finish(mut self) -> Result<Summary, Error> {
+        self.summary()
+    }
+
+    /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
+    /// restarted.
+    pub fn summary(&mut self) -> Result<Summary, Error> {
+        let progress = &self.progress;
+        let (k, config, momenta) = (progress.k, &progress.config, &progress.momenta);
+        let (mut monitor, mut record) = (progress.monitor.clone(), progress.record.clone());
         if let Some(jump) = monitor.finish() {
             jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
         }
         let final_q = config.output(self.context.wrap_angles).to_vec();
-        let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&momenta)).to_vec();
+        let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(momenta)).to_vec();
         let (k0, q0, p0) = record.start;
         let reference_error =
             self.context.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
@@ -412,7 +459,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 max_drift: record.max_drift,
             },
             newton: record.newton,
-            derivatives: self.derivative_path,
+            derivatives: self.derivative_path.clone(),
             wall_seconds: self.started.elapsed().as_secs_f64(),
             reference_error,
             warnings: record.warnings.0,
@@ -434,7 +481,8 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
         )
         .map_err(Error::NotCompiled)?;
         let (equations, prepared) = (scheme.equations(), progress.momenta);
-        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true }, path))
+        let renewable = derivatives.independent_of_first_step(method.differentiation, steps);
+        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true, renewable }, path))
     }
 
     /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds
