@@ -7,6 +7,9 @@
 //!   dual-number derivatives (what `auto` chooses for runs of 10² steps), so that the ratio is the
 //!   members' set-up and bookkeeping (target: ≤ 2). The members are built from the spec as `ddirac
 //!   ensemble` builds them (initial entries set by name on the shared system).
+//! - *Sharing*: 64 compiled members of 5000 steps on one thread, sharing the system (each renews the
+//!   stepper of the member before it, with its traced programs) against each with a system of its
+//!   own (each traces anew; the native code comes from the cache): the cost of a member's trace.
 //! - *Memory*: the peak resident memory of `ddirac ensemble` runs of 10³ … 10⁵ members of 10² steps
 //!   with final states only, measured for each child process, against the size of their output and
 //!   against what members × trajectory would take.
@@ -27,6 +30,7 @@ use crate::ensemble::{Ensemble, MembersFrom};
 struct Report {
     threads: Comparison,
     setup: Comparison,
+    sharing: Comparison,
     memory: Vec<Memory>,
 }
 
@@ -56,8 +60,9 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     print::heading("ensemble", "members run together: threads, set-up, memory");
     let threads = threads(settings)?;
     let setup = setup(settings)?;
+    let sharing = sharing(settings)?;
     let memory = memory(settings)?;
-    to_json(&Report { threads, setup, memory })
+    to_json(&Report { threads, setup, sharing, memory })
 }
 
 fn threads(settings: &Settings) -> Result<Comparison, miette::Report> {
@@ -138,6 +143,50 @@ fn setup(settings: &Settings) -> Result<Comparison, miette::Report> {
     let pair = Pair::new(&names[0], &names[1]).target(Target::AtMost(2.0));
     let comparison = compare(title, settings.schedule, contenders, &[pair])?;
     print::comparison(&comparison);
+    Ok(comparison)
+}
+
+fn sharing(settings: &Settings) -> Result<Comparison, miette::Report> {
+    let (members, steps) = if settings.quick { (8, 5000) } else { (64, 5000) };
+    let shared = Erased(DoubleSphericalPendulum::default());
+    let reduced = method(Rule::Midpoint, true, Variant::Plus);
+    let problems: Vec<Problem> = (0..members).map(|i| member_problem(i, members, steps)).collect();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a thread pool");
+    let contender = |own: bool| {
+        let (shared, problems, method, pool) = (&shared, &problems, reduced.clone(), &pool);
+        let run = move || {
+            let member = |i: usize| -> Result<_, OutputError> {
+                let system = if own {
+                    MemberSystem::Own(Box::new(Erased(DoubleSphericalPendulum::default())))
+                } else {
+                    MemberSystem::Shared(shared as &dyn DynSystem)
+                };
+                Ok((system, problems[i].clone()))
+            };
+            let sink = |_: usize, outcome: ddirac::ensemble::Outcome| -> Result<(), OutputError> {
+                match outcome.status {
+                    ddirac::ensemble::Status::Finished(_) => Ok(()),
+                    ddirac::ensemble::Status::Failed { error, .. } => Err(Box::new(error)),
+                }
+            };
+            pool.install(|| ddirac::ensemble::run(0..problems.len(), &member, &method, &LAST_ROW_ONLY, false, &sink))
+                .map(drop)
+                .map_err(|e| miette::miette!("a member of the sharing benchmark failed: {e}"))
+        };
+        let name = if own { "a system each (traced each)" } else { "shared system (renewed)" };
+        Contender::new(name, members * steps, run)
+    };
+    let title = format!("{members} members of the double spherical pendulum, {steps} steps, compiled, one thread");
+    let contenders = vec![contender(false), contender(true)];
+    let pair = Pair::new("shared system (renewed)", "a system each (traced each)");
+    let comparison = compare(title, settings.schedule, contenders, &[pair])?;
+    print::comparison(&comparison);
+    if let (Some(a), Some(b)) =
+        (comparison.timing("shared system (renewed)"), comparison.timing("a system each (traced each)"))
+    {
+        let per_member = (b.ns_per_step.median - a.ns_per_step.median) * steps as f64 * 1e-9;
+        println!("    a member's own trace and preparation: {:.0} µs", per_member * 1e6);
+    }
     Ok(comparison)
 }
 
