@@ -129,7 +129,7 @@ fn poll<T: Send + 'static>(
             ddirac::interrupt::clear();
             return Err(e);
         }
-        let _ = Python::attach(|py| tick(py));
+        let _ = Python::attach(tick);
         result
     })
 }
