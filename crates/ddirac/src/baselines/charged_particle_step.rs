@@ -18,7 +18,8 @@
 //! ⎣ c   a ⎦ ⎣Δ2⎦ = ⎣w2 − μ A2(q_k)⎦,      a Δ3 = w3,
 //! ```
 //!
-//! a 2 × 2 system with determinant a² + c² > 0, solved in closed form. These are the numbers the
+//! a 2 × 2 system with determinant a² + c² > 0, solved in closed form. μ is conserved, so a, c and
+//! the inverse matrix are the same at every step of a run and are computed once. These are the numbers the
 //! generic engine computes for [`ChargedParticle`](crate::systems::ChargedParticle) with
 //! [`Rule::Left`](crate::Rule::Left), reduced, (+), by automatic differentiation and Newton's method.
 
@@ -58,35 +59,63 @@ pub struct ReducedState {
 }
 
 impl ChargedParticleStep {
+    /// What every step with conserved momentum `mu` shares: a = m/h, c = μ B0/2 and the inverse of
+    /// the 2 × 2 matrix, computed once per run (as the engine's closed-form step holds its constant
+    /// matrices), so that a step is multiplications and additions only.
+    fn invariants(&self, mu: f64) -> Invariants {
+        let half = 0.5 * self.b0;
+        let a = self.m / self.h;
+        let c = mu * half;
+        let det = a * a + c * c;
+        Invariants { half, a, mu, h_mu: self.h * mu, inv: [a / det, c / det], inv_a: 1.0 / a }
+    }
+
     /// One step (q_k, θ_k, w_k, μ) ↦ (q_{k+1}, θ_{k+1}, w_{k+1}, μ).
     #[inline]
     pub fn step(&self, s: &ReducedState) -> ReducedState {
-        let half = 0.5 * self.b0;
+        self.invariants(s.mu).step(s)
+    }
+
+    /// Runs `steps` steps from `start` and returns the last state: the same steps as
+    /// [`ChargedParticleStep::step`], with the invariants of the run computed once.
+    pub fn run(&self, start: ReducedState, steps: usize) -> ReducedState {
+        let invariants = self.invariants(start.mu);
+        let mut s = start;
+        for _ in 0..steps {
+            s = invariants.step(&s);
+        }
+        s
+    }
+}
+
+/// The quantities every step of a run shares.
+#[derive(Debug, Clone, Copy)]
+struct Invariants {
+    half: f64,
+    a: f64,
+    mu: f64,
+    h_mu: f64,
+    /// The first row of the inverse of [[a, −c], [c, a]]: (a, c)/det; the second is (−c, a)/det.
+    inv: [f64; 2],
+    inv_a: f64,
+}
+
+impl Invariants {
+    #[inline(always)]
+    fn step(&self, s: &ReducedState) -> ReducedState {
+        let Self { half, a, mu, h_mu, inv: [i1, i2], inv_a } = *self;
         let [q1, q2, q3] = s.q;
-        let mu = s.mu;
         // A(q_k)
         let (a1, a2) = (-half * q2, half * q1);
-        let a = self.m / self.h;
-        let c = mu * half;
         let (r1, r2) = (s.w[0] - mu * a1, s.w[1] - mu * a2);
-        let det = a * a + c * c;
-        let d1 = (a * r1 + c * r2) / det;
-        let d2 = (a * r2 - c * r1) / det;
-        let d3 = s.w[2] / a;
+        let d1 = i1 * r1 + i2 * r2;
+        let d2 = i1 * r2 - i2 * r1;
+        let d3 = s.w[2] * inv_a;
         ReducedState {
             q: [q1 + d1, q2 + d2, q3 + d3],
-            theta: s.theta + (self.h * mu - (a1 * d1 + a2 * d2)),
+            theta: s.theta + (h_mu - (a1 * d1 + a2 * d2)),
             w: [a * d1 + mu * a1, a * d2 + mu * a2, a * d3],
             mu,
         }
-    }
-
-    /// Runs `steps` steps from `start` and returns the last state.
-    pub fn run(&self, start: ReducedState, steps: usize) -> ReducedState {
-        let mut s = start;
-        for _ in 0..steps {
-            s = self.step(&s);
-        }
-        s
     }
 }
