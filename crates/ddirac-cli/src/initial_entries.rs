@@ -59,9 +59,15 @@ impl Entry {
     }
 }
 
-/// Refuses entries of the momentum vector the spec does not give (p where it gives v, or v where
-/// it gives p) unless all `n` of them are given.
+/// Refuses entries of both momentum vectors, and entries of the one the spec does not give (p where
+/// it gives v, or v where it gives p) unless all `n` of them are given.
 pub fn check_kinds(entries: &[Entry], problem: &Problem, n: usize) -> Result<(), String> {
+    let given = |vector: Vector| entries.iter().any(|e| e.vector == vector);
+    if given(Vector::P) && given(Vector::V) {
+        return Err("entries of `initial.p` and of `initial.v` are given together: a run starts from momenta or \
+                    from velocities, so give entries of one of them"
+            .into());
+    }
     let (given, other, other_name) = match problem.initial {
         InitialMomentum::Momentum(_) => ("p", Vector::V, "v"),
         InitialMomentum::Velocity(_) => ("v", Vector::P, "p"),
@@ -144,6 +150,14 @@ mod tests {
         assert!(why.contains("all 2 coordinates"), "{why}");
         apply(&mut p, &names(), &[entry("initial.v.x"), entry("initial.v.y")], &[1.0, 2.0]).unwrap();
         assert_eq!(p.initial, InitialMomentum::Velocity(vec![1.0, 2.0]));
+    }
+
+    #[test]
+    fn momenta_and_velocities_together_are_refused() {
+        let mut p = problem();
+        let entries = [entry("initial.v.x"), entry("initial.v.y"), entry("initial.p.x")];
+        let why = apply(&mut p, &names(), &entries, &[1.0, 2.0, 3.0]).unwrap_err();
+        assert!(why.contains("`initial.p` and of `initial.v` are given together"), "{why}");
     }
 
     #[test]

@@ -308,13 +308,18 @@ fn a_failing_member_is_reported_and_the_others_complete() {
 fn malformed_members_are_refused_naming_the_place_and_nothing_is_written() {
     let dir = TempDir::new("ensemble-malformed");
     let spec = example("double_spherical_pendulum.toml");
-    let cases: [(&str, &[&str]); 6] = [
+    let cases: [(&str, &[&str]); 7] = [
         ("time.step\n0.1\n", &["`time.step` cannot vary across members", "initial.q.<coordinate>"]),
         ("initial.q.phi3\n0.1\n", &["column `initial.q.phi3`", "not a coordinate", "vartheta1, phi1, vartheta2, phi2"]),
         ("parameters.mass\n1\n", &["`mass` is not a parameter", "m1, m2, l1, l2, g"]),
         ("initial.q.phi1\n0.1\nabc\n", &["line 3, column `initial.q.phi1`: `abc` is not a number"]),
         ("initial.q.phi1\nnan\n", &["`nan` is not a finite number"]),
         ("initial.v.phi1\n0.1\n", &["entries of `initial.v` replace it only when all 4 coordinates are given"]),
+        // Momenta and velocities together (this used to panic).
+        (
+            "initial.v.vartheta1,initial.v.phi1,initial.v.vartheta2,initial.v.phi2,initial.p.phi1\n0,0,0,0,1\n",
+            &["`initial.p` and of `initial.v` are given together"],
+        ),
     ];
     for (members, needles) in cases {
         let file = dir.file("members.csv", members);

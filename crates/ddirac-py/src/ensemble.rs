@@ -5,8 +5,7 @@
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{mpsc, Arc, Mutex};
-use std::time::Duration;
+use std::sync::{Arc, Mutex};
 
 use ddirac_cli::ensemble::{Ensemble, MembersFrom, Results, DIAGNOSTICS};
 use numpy::{PyArray1, PyArrayMethods};
@@ -14,10 +13,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::error::raise;
+use crate::simulate::interruptible_with;
 use crate::spec::cli_error;
-
-/// How often the calling thread looks for Python signals and reports progress.
-const POLL: Duration = Duration::from_millis(50);
 
 fn load(
     path: PathBuf,
@@ -86,7 +83,7 @@ pub fn ensemble<'py>(
         let report = |d: usize| work_done.store(d, Ordering::Relaxed);
         work_ensemble.run(0..count, threads, &keep, &report)
     };
-    let mut results = poll(py, work, &mut |py| match &progress {
+    let mut results = interruptible_with(py, work, &mut |py| match &progress {
         Some(callback) => callback.call1(py, (done.load(Ordering::Relaxed),)).map(drop),
         None => Ok(()),
     })?
@@ -96,42 +93,6 @@ pub fn ensemble<'py>(
     }
     let kept = kept.lock().expect("no panic while keeping rows").take();
     arrays(py, &ensemble, results, kept, offset)
-}
-
-/// Runs `work` on a pooled thread with the GIL released; every [`POLL`] the calling thread runs
-/// Python's signal handlers (a raising one, Ctrl-C, stops the members before their next step) and
-/// `tick` (the progress callback; if it raises, the members stop too).
-fn poll<T: Send + 'static>(
-    py: Python<'_>,
-    work: impl FnOnce() -> T + Send + 'static,
-    tick: &mut (dyn FnMut(Python<'_>) -> PyResult<()> + Send),
-) -> PyResult<T> {
-    py.detach(|| {
-        let (sender, receiver) = mpsc::channel();
-        rayon::spawn(move || {
-            let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
-        });
-        let mut raised = None;
-        let result = loop {
-            match receiver.recv_timeout(POLL) {
-                Ok(result) => break result.map_err(|_| raise("an ensemble's thread panicked")),
-                Err(mpsc::RecvTimeoutError::Disconnected) => break Err(raise("the ensemble stopped without a result")),
-                Err(mpsc::RecvTimeoutError::Timeout) if raised.is_none() => {
-                    if let Err(e) = Python::attach(|py| py.check_signals().and_then(|()| tick(py))) {
-                        ddirac::interrupt::request();
-                        raised = Some(e);
-                    }
-                }
-                Err(mpsc::RecvTimeoutError::Timeout) => {}
-            }
-        };
-        if let Some(e) = raised {
-            ddirac::interrupt::clear();
-            return Err(e);
-        }
-        let _ = Python::attach(tick);
-        result
-    })
 }
 
 /// The rows of every member, kept in memory.

@@ -243,14 +243,23 @@ pub(crate) fn run<'py>(
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Runs `work` (a run of the command line's machinery, which has no watch) on a pooled thread with the
-/// GIL released, while the calling thread looks for Python
-/// signals every [`SIGNAL_POLL`]: a signal handler that raises (Ctrl-C's `KeyboardInterrupt`) asks the
-/// run to stop before its next step ([`ddirac::interrupt`]), and its exception is raised once the
-/// worker has stopped. Python runs signal handlers in the main thread only; a run started from
-/// another thread is not interrupted.
+/// GIL released, while the calling thread looks for Python signals every [`SIGNAL_POLL`]: a signal
+/// handler that raises (Ctrl-C's `KeyboardInterrupt`) asks the run to stop before its next step
+/// ([`ddirac::interrupt`]), and its exception is raised once the worker has stopped. Python runs
+/// signal handlers in the main thread only; a run started from another thread is not interrupted.
 pub(crate) fn interruptible<T: Send + 'static>(
     py: Python<'_>,
     work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
+    interruptible_with(py, work, &mut |_| Ok(()))
+}
+
+/// [`interruptible`], calling `tick` (a progress report) after each look for signals and once at
+/// the end; if `tick` raises, the run is stopped as by a signal.
+pub(crate) fn interruptible_with<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce() -> T + Send + 'static,
+    tick: &mut (dyn FnMut(Python<'_>) -> PyResult<()> + Send),
 ) -> PyResult<T> {
     py.detach(|| {
         let (done, finished) = mpsc::channel();
@@ -264,20 +273,20 @@ pub(crate) fn interruptible<T: Send + 'static>(
             match finished.recv_timeout(SIGNAL_POLL) {
                 Ok(result) => break result.map_err(|_| raise("the run's thread panicked")),
                 Err(RecvTimeoutError::Disconnected) => break Err(raise("the run's thread stopped without a result")),
-                Err(RecvTimeoutError::Timeout) => {
-                    if raised.is_none() {
-                        if let Err(e) = Python::attach(|py| py.check_signals()) {
-                            ddirac::interrupt::request();
-                            raised = Some(e);
-                        }
+                Err(RecvTimeoutError::Timeout) if raised.is_none() => {
+                    if let Err(e) = Python::attach(|py| py.check_signals().and_then(|()| tick(py))) {
+                        ddirac::interrupt::request();
+                        raised = Some(e);
                     }
                 }
+                Err(RecvTimeoutError::Timeout) => {}
             }
         };
         if let Some(e) = raised {
             ddirac::interrupt::clear();
             return Err(e);
         }
+        let _ = Python::attach(tick);
         result
     })
 }

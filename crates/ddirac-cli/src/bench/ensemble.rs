@@ -65,6 +65,14 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     to_json(&Report { threads, setup, sharing, memory })
 }
 
+/// The sink of a benchmark's ensemble: a member that fails stops the benchmark with its error.
+fn every_member_finishes(_: usize, outcome: ddirac::ensemble::Outcome) -> Result<(), OutputError> {
+    match outcome.status {
+        ddirac::ensemble::Status::Finished(_) => Ok(()),
+        ddirac::ensemble::Status::Failed { error, .. } => Err(Box::new(error)),
+    }
+}
+
 fn threads(settings: &Settings) -> Result<Comparison, miette::Report> {
     let (members, steps) = if settings.quick { (8, 1000) } else { (64, 10_000) };
     let system = Erased(DoubleSphericalPendulum::default());
@@ -77,15 +85,18 @@ fn threads(settings: &Settings) -> Result<Comparison, miette::Report> {
             let member = |i: usize| -> Result<_, OutputError> {
                 Ok((MemberSystem::Shared(system as &dyn DynSystem), problems[i].clone()))
             };
-            let sink = |_: usize, outcome: ddirac::ensemble::Outcome| -> Result<(), OutputError> {
-                match outcome.status {
-                    ddirac::ensemble::Status::Finished(_) => Ok(()),
-                    ddirac::ensemble::Status::Failed { error, .. } => Err(Box::new(error)),
-                }
-            };
-            pool.install(|| ddirac::ensemble::run(0..problems.len(), &member, &method, &LAST_ROW_ONLY, false, &sink))
-                .map(drop)
-                .map_err(|e| miette::miette!("a member of the threads benchmark failed: {e}"))
+            pool.install(|| {
+                ddirac::ensemble::run(
+                    0..problems.len(),
+                    &member,
+                    &method,
+                    &LAST_ROW_ONLY,
+                    false,
+                    &every_member_finishes,
+                )
+            })
+            .map(drop)
+            .map_err(|e| miette::miette!("a member of the threads benchmark failed: {e}"))
         };
         Contender::new(format!("{threads} thread{}", if threads == 1 { "" } else { "s" }), members * steps, run)
     };
@@ -163,15 +174,18 @@ fn sharing(settings: &Settings) -> Result<Comparison, miette::Report> {
                 };
                 Ok((system, problems[i].clone()))
             };
-            let sink = |_: usize, outcome: ddirac::ensemble::Outcome| -> Result<(), OutputError> {
-                match outcome.status {
-                    ddirac::ensemble::Status::Finished(_) => Ok(()),
-                    ddirac::ensemble::Status::Failed { error, .. } => Err(Box::new(error)),
-                }
-            };
-            pool.install(|| ddirac::ensemble::run(0..problems.len(), &member, &method, &LAST_ROW_ONLY, false, &sink))
-                .map(drop)
-                .map_err(|e| miette::miette!("a member of the sharing benchmark failed: {e}"))
+            pool.install(|| {
+                ddirac::ensemble::run(
+                    0..problems.len(),
+                    &member,
+                    &method,
+                    &LAST_ROW_ONLY,
+                    false,
+                    &every_member_finishes,
+                )
+            })
+            .map(drop)
+            .map_err(|e| miette::miette!("a member of the sharing benchmark failed: {e}"))
         };
         let name = if own { "a system each (traced each)" } else { "shared system (renewed)" };
         Contender::new(name, members * steps, run)
