@@ -17,6 +17,8 @@ METHOD_KEYS = {
     "check_invariance": True,
     "on_energy_jump": "warn",
     "energy_jump_threshold": None,
+    "order": 2,
+    "composition": None,
 }
 
 # Largest relative deviation of duration / step from a whole number of steps.
@@ -96,7 +98,9 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     ``reduced=True`` integrates the reduced equations and reconstructs the group motion. Other method
     keys: ``connection`` (rows of K, one per group coordinate), ``tolerance``, ``max_iterations``,
     ``reuse_jacobian``, ``derivatives`` (``auto``, ``compiled``, ``dual``), ``check_invariance``,
-    ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``. Every
+    ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``, ``order`` (2, 4,
+    6 or 8: orders above 2 compose the basic step of a symmetric rule, midpoint or trapezoid) and
+    ``composition`` (its coefficient set: ``suzuki``, ``kahan-li`` or ``triple-jump``). Every
     ``every``-th row is kept (and the last).
 
     The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.
@@ -162,6 +166,8 @@ def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, 
         "check_invariance": bool(keys["check_invariance"]),
         "on_energy_jump": str(keys["on_energy_jump"]),
         "energy_jump_threshold": None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
+        "order": _count(keys["order"], "order"),
+        "composition": None if keys["composition"] is None else str(keys["composition"]),
     }
     return {"q0": q0, "p0": p0, "v0": v0, "step": h, "steps": n, "method": keys}
 

@@ -80,6 +80,9 @@ struct MethodJson {
     derivatives: &'static str,
     on_energy_jump: &'static str,
     energy_jump_threshold: f64,
+    order: u8,
+    composition: &'static str,
+    stages: usize,
 }
 
 #[derive(Serialize)]
@@ -163,6 +166,9 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             check_invariance: method.check_invariance,
             derivatives: method.differentiation.name(),
             on_energy_jump: method.energy_jump.action.name(),
+            order: method.composition.order(),
+            composition: method.composition.name(),
+            stages: method.composition.coefficients().len(),
             energy_jump_threshold: method.energy_jump.threshold,
         },
         steps: summary.steps,
@@ -212,14 +218,15 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
     let reference = summary.reference_error.map_or("none (no exact solution)".to_owned(), |r| format!("{r:.6e}"));
     [
         format!(
-            "{}: {} steps of h = {} (T = {}), rule {}, variant {}, {}",
+            "{}: {} steps of h = {} (T = {}), rule {}, variant {}, {}{}",
             plan.name,
             summary.steps,
             summary.step,
             summary.step * summary.steps as f64,
             m.rule.name(),
             m.variant.name(),
-            if m.reduced { "reduced" } else { "unreduced" }
+            if m.reduced { "reduced" } else { "unreduced" },
+            composition(m.composition)
         ),
         format!("  final q          {}", list(&summary.coordinates, &summary.final_q)),
         format!("  energy           [{:.10e}, {:.10e}] (relative spread {spread:.3e})", e.min, e.max),
@@ -255,4 +262,13 @@ fn warnings(warnings: &[ddirac::Warning]) -> String {
     }
     let kinds: Vec<&str> = warnings.iter().map(|w| w.kind.name()).collect();
     format!("  warnings         {} ({}; see stderr and summary.json)", warnings.len(), kinds.join(", "))
+}
+
+/// ", order p (set, s stages)" for a composed method, nothing for the basic one.
+pub(crate) fn composition(c: ddirac::Composition) -> String {
+    if c.is_basic() {
+        String::new()
+    } else {
+        format!(", order {} ({}, {} sub-steps)", c.order(), c.name(), c.coefficients().len())
+    }
 }

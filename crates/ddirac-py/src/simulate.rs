@@ -30,6 +30,8 @@ pub(crate) struct MethodKeys {
     check_invariance: bool,
     on_energy_jump: String,
     energy_jump_threshold: Option<f64>,
+    order: Option<i64>,
+    composition: Option<String>,
 }
 
 impl MethodKeys {
@@ -62,7 +64,23 @@ impl MethodKeys {
         let threshold = self.energy_jump_threshold.unwrap_or(EnergyJump::default().threshold);
         let energy_jump = EnergyJump { threshold, action };
         let (reduced, check_invariance) = (self.reduced, self.check_invariance);
-        Ok(Method { rule, variant, reduced, connection, newton, check_invariance, differentiation, energy_jump })
+        let order = match self.order.map(u8::try_from) {
+            Some(Ok(order)) => Some(order),
+            Some(Err(_)) => return Err(raise(format!("`order` = {} is not one of: 2, 4, 6, 8", self.order.unwrap_or(0)))),
+            None => None,
+        };
+        let composition = ddirac::Composition::select(order, self.composition.as_deref()).map_err(raise)?;
+        Ok(Method {
+            rule,
+            variant,
+            reduced,
+            connection,
+            newton,
+            check_invariance,
+            differentiation,
+            energy_jump,
+            composition,
+        })
     }
 }
 
@@ -326,6 +344,8 @@ fn summary_dict<'py>(
     m.set_item("derivatives", method.differentiation.name())?;
     m.set_item("on_energy_jump", method.energy_jump.action.name())?;
     m.set_item("energy_jump_threshold", method.energy_jump.threshold)?;
+    m.set_item("order", method.composition.order())?;
+    m.set_item("composition", method.composition.name())?;
     d.set_item("method", m)?;
     d.set_item("steps", s.steps)?;
     d.set_item("step", s.step)?;

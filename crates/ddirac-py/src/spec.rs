@@ -107,6 +107,8 @@ impl LoadedSpec {
         d.set_item("check_invariance", m.check_invariance)?;
         d.set_item("on_energy_jump", m.energy_jump.action.name())?;
         d.set_item("energy_jump_threshold", m.energy_jump.threshold)?;
+        d.set_item("order", m.composition.order())?;
+        d.set_item("composition", m.composition.name())?;
         Ok(d)
     }
 

@@ -181,6 +181,8 @@ pub enum Input {
     MomentumFromVelocity,
     /// The connection K ([`crate::Method::connection`]).
     Connection,
+    /// The composition of a step ([`crate::Method::composition`]).
+    Composition,
     /// A parameter of a system, by name.
     Parameter(String),
     /// The state a stepper restarts from ([`crate::Stepper::restart`]); its entries are those of q,
@@ -201,6 +203,7 @@ impl std::fmt::Display for Input {
             Input::InitialVelocity => f.write_str("initial velocity v"),
             Input::MomentumFromVelocity => f.write_str("initial momentum p = ∂L/∂v(q0, v0)"),
             Input::Connection => f.write_str("connection"),
+            Input::Composition => f.write_str("composition"),
             Input::Parameter(name) => write!(f, "parameter `{name}`"),
             Input::State => f.write_str("state (q, p)"),
             Input::Argument(name) => f.write_str(name),

@@ -25,6 +25,7 @@ pub mod ad;
 pub mod baselines;
 pub mod chart;
 mod check;
+pub mod composition;
 pub mod compiled;
 pub mod diagnostics;
 mod energy_jump;
@@ -49,6 +50,7 @@ mod system;
 pub mod systems;
 
 pub use check::{check, CheckReport, Finding, CONSTRAINT_TOLERANCE};
+pub use composition::Composition;
 pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
 pub use energy_jump::{EnergyJump, JumpAction, ENERGY_DRIFT};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased};

@@ -54,7 +54,7 @@ pub const ACROSS_SOLVES: usize = 7;
 pub const CONTRACTION: f64 = 0.25;
 
 /// What the solver reports on success.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct NewtonStats {
     /// Number of Newton corrections (linear solves) taken.
     pub iterations: usize,

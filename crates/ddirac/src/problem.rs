@@ -2,7 +2,7 @@
 //! connection, Newton options): the two things that, joined with a [`System`](crate::System), make
 //! an integration.
 
-use crate::{Connection, EnergyJump, Error, Input, NewtonOptions, Rule};
+use crate::{Composition, Connection, EnergyJump, Error, Input, NewtonOptions, Rule};
 
 /// How the initial momentum is given.
 #[derive(Debug, Clone, PartialEq)]
@@ -205,6 +205,10 @@ pub struct Method {
     pub differentiation: Differentiation,
     /// The watch on jumps of the energy between steps ([`EnergyJump`]).
     pub energy_jump: EnergyJump,
+    /// How a step is composed of sub-steps of the basic method: [`Composition::Basic`] (order 2) or
+    /// a symmetric composition of order 4, 6 or 8 (only for the symmetric rules, midpoint and
+    /// trapezoid).
+    pub composition: Composition,
 }
 
 impl Default for Method {
@@ -218,6 +222,7 @@ impl Default for Method {
             check_invariance: true,
             differentiation: Differentiation::Auto,
             energy_jump: EnergyJump::default(),
+            composition: Composition::Basic,
         }
     }
 }

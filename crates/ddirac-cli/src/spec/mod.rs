@@ -208,6 +208,12 @@ pub struct MethodSpec {
     pub on_energy_jump: Option<Spanned<String>>,
     /// Smallest change of the energy in one step, relative to its scale, that may count as a jump.
     pub energy_jump_threshold: Option<Number>,
+    /// The order of the method: 2 (default: the basic step), 4, 6 or 8 (a symmetric composition of
+    /// the basic step; midpoint and trapezoid rules only).
+    pub order: Option<Spanned<i64>>,
+    /// The coefficient set of a composition: `suzuki` (order 4's default), `kahan-li` (order 6's and
+    /// 8's default) or `triple-jump` (orders 4, 6, 8).
+    pub composition: Option<Spanned<String>>,
 }
 
 /// `[time]`: any two of step, steps, duration (all three if consistent).

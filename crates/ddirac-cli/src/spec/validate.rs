@@ -4,6 +4,7 @@
 use std::ops::Range;
 
 use ddirac::systems::BuiltIn;
+use ddirac::composition::{self, Composition};
 use ddirac::{
     Coordinate, Differentiation, DynSystem, EnergyJump, JumpAction, Method, NewtonOptions, OutputOptions, Problem,
     Role, Rule, Variant,
@@ -11,7 +12,7 @@ use ddirac::{
 use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::{expression, initial, time, Number, Numbers, Spec, SystemRef};
+use super::{expression, initial, time, MethodSpec, Number, Numbers, Spec, SystemRef};
 use crate::diagnostics::{SpecError, SpecSource};
 
 /// A validated spec, ready to run.
@@ -61,6 +62,8 @@ pub struct Spans {
     pub tolerance: Option<Range<usize>>,
     /// `method.on_energy_jump`.
     pub energy_jump: Option<Range<usize>>,
+    /// `method.composition`, else `method.order`.
+    pub composition: Option<Range<usize>>,
     /// Whether the system is a built-in one (named) rather than a `[system]` table.
     pub built_in: bool,
 }
@@ -95,6 +98,7 @@ impl Spans {
                 self.momentum.clone().map(|s| (s, "initial data"))
             }
             Input::Connection => self.connection.clone().map(|s| (s, "this connection")),
+            Input::Composition => self.composition.clone().map(|s| (s, "this composition")),
             Input::Every => self.every.clone().map(|s| (s, "this value")),
             Input::Step | Input::Steps => self.time.clone().map(|s| (s, "this time grid")),
             _ => None,
@@ -442,6 +446,8 @@ fn method(
         }
         None => defaults.energy_jump.threshold,
     };
+    let composition = composition(source, m)?;
+    spans.composition = m.composition.as_ref().map(|c| c.span()).or_else(|| m.order.as_ref().map(|o| o.span()));
     spans.reduced = m.reduced.as_ref().map(|r| r.span());
     spans.tolerance = m.tolerance.as_ref().map(|t| t.span());
     spans.energy_jump = m.on_energy_jump.as_ref().map(|a| a.span());
@@ -464,6 +470,29 @@ fn method(
         check_invariance: !matches!(&m.check_invariance, Some(c) if !*c.get_ref()),
         differentiation,
         energy_jump: EnergyJump { threshold, action },
+        composition,
+    })
+}
+
+/// `method.order` and `method.composition`: the composition of a step.
+fn composition(source: &SpecSource, m: &MethodSpec) -> Result<Composition, Box<SpecError>> {
+    let order = match &m.order {
+        Some(o) => match u8::try_from(*o.get_ref()) {
+            Ok(order) if composition::ORDERS.contains(&order) => Some(order),
+            _ => {
+                return Err(source
+                    .error(Some(o.span()), format!("there is no method of order {}", o.get_ref()), "not an order")
+                    .with_help("`method.order` is 2 (the basic step), 4, 6 or 8 (compositions of it)"))
+            }
+        },
+        None => None,
+    };
+    let name = m.composition.as_ref().map(|c| c.get_ref().as_str());
+    Composition::select(order, name).map_err(|why| {
+        let span = m.composition.as_ref().map(|c| c.span());
+        source.error(span, why, "this composition").with_help(
+            "`method.composition` is `suzuki` (order 4), `kahan-li` (orders 6, 8) or `triple-jump` (orders 4, 6, 8)",
+        )
     })
 }
 

@@ -13,10 +13,12 @@
 
 mod chart_watch;
 mod progress;
+mod stages;
 mod state;
 
 use std::time::Instant;
 
+use crate::chart::Configuration;
 use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning};
 use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
@@ -31,6 +33,7 @@ use crate::{
 
 pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
 use progress::{jumped, Progress};
+use stages::Stages;
 use state::Memory;
 pub use state::{OwnedRow, State, StepReport};
 
@@ -48,6 +51,7 @@ pub(crate) struct Setup<const N: usize> {
 impl<const N: usize> Setup<N> {
     pub(crate) fn new<S: System<N>>(system: &S, problem: &Problem, method: &Method) -> Result<Self, Error> {
         problem.validate(N)?;
+        stages::check_symmetric(method)?;
         let split = Split::new(&system.coordinates());
         let sized = |v: &[f64]| -> [f64; N] { v.try_into().expect("validated size") };
         let q0 = sized(&problem.q0);
@@ -130,10 +134,10 @@ pub struct Stepper<'a, S, const N: usize> {
     progress: Progress<N>,
 }
 
-/// The scheme of a run with its step equations and derivatives: unreduced or reduced.
+/// The schemes of a run's sub-steps with their step equations and derivatives: unreduced or reduced.
 enum Schemes<'a, S, const N: usize> {
-    Unreduced(Equipped<LagrangeDirac<'a, S>, N>),
-    Reduced(Equipped<LagrangePoincareDirac<'a, S>, N>),
+    Unreduced(Stages<LagrangeDirac<'a, S>, N>),
+    Reduced(Stages<LagrangePoincareDirac<'a, S>, N>),
 }
 
 struct Equipped<Sc, const N: usize> {
@@ -150,7 +154,7 @@ struct Equipped<Sc, const N: usize> {
     renewable: bool,
 }
 
-/// `$body` with `$e` bound to the run's [`Equipped`] scheme, whichever it is.
+/// `$body` with `$e` bound to the run's [`Stages`], whichever scheme they are of.
 macro_rules! equipped {
     ($schemes:expr, $e:ident => $body:expr) => {
         match $schemes {
@@ -189,17 +193,18 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let started = Instant::now();
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
-        let (schemes, derivative_path, mut progress) = if method.reduced {
-            let reduction = ReducedLagrangian::new(system, method.rule, h, setup.connection.clone())?;
-            let scheme = LagrangePoincareDirac::new(reduction, method.variant);
-            let progress = Progress::cold(&scheme, start, setup.dq0, kinds, &setup.split, method, warnings);
-            let (equipped, path) = Equipped::new(scheme, method, steps, &progress)?;
-            (Schemes::Reduced(equipped), path, progress)
+        let first = FirstStep { q: Configuration::new(setup.q0, kinds), p: setup.p0, dq: setup.dq0 };
+        let (schemes, derivative_path) = if method.reduced {
+            let scheme = |step| -> Result<_, Error> {
+                let reduction = ReducedLagrangian::new(system, method.rule, step, setup.connection.clone())?;
+                Ok(LagrangePoincareDirac::new(reduction, method.variant))
+            };
+            let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
+            (Schemes::Reduced(stages), path)
         } else {
-            let scheme = LagrangeDirac { ld: DiscreteLagrangian::new(system, method.rule, h) };
-            let progress = Progress::cold(&scheme, start, setup.dq0, kinds, &setup.split, method, warnings);
-            let (equipped, path) = Equipped::new(scheme, method, steps, &progress)?;
-            (Schemes::Unreduced(equipped), path, progress)
+            let scheme = |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system, method.rule, step) });
+            let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
+            (Schemes::Unreduced(stages), path)
         };
         let fresh_kept = match derivative_path {
             DerivativePath::Compiled { residual, jacobian, .. } => newton::KeptJacobian::with_relative_cost(
@@ -207,7 +212,9 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
             ),
             DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
         };
-        progress.kept = fresh_kept.clone();
+        let progress = equipped!(&schemes, st => Progress::cold(
+            &st.first().scheme, &st.gammas, &fresh_kept, start, setup.dq0, kinds, &setup.split, method, warnings
+        ));
         Ok(Self {
             context: Context {
                 system,
@@ -280,7 +287,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// energy of step k is known once it is taken: [`StepReport::discrete_energy`]). The summary's
     /// energy statistics are over the rows taken.
     pub fn row(&mut self) -> OwnedRow<N> {
-        equipped!(&self.schemes, e => self.progress.row(&e.scheme, &self.context))
+        equipped!(&self.schemes, e => self.progress.row(&e.first().scheme, &self.context))
     }
 
     /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
@@ -309,7 +316,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 until_watch -= 1;
                 // The row of step k carries L_d(q_k, q_{k+1}): it is taken before the step, reported
                 // after it.
-                let row = (until_report == 0).then(|| progress.row(&e.scheme, context));
+                let row = (until_report == 0).then(|| progress.row(&e.first().scheme, context));
                 until_report = if until_report == 0 { every - 1 } else { until_report - 1 };
                 let step = progress.step(e, context)?;
                 if let Some(mut row) = row {
@@ -317,7 +324,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                     observer(&row.as_row()).map_err(Error::Output)?;
                 }
             }
-            observer(&progress.row(&e.scheme, context).as_row()).map_err(Error::Output)
+            observer(&progress.row(&e.first().scheme, context).as_row()).map_err(Error::Output)
         })
     }
 
@@ -325,7 +332,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// continue from it bit for bit.
     pub fn state(&self) -> State<N> {
         let progress = &self.progress;
-        let p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(&progress.momenta));
+        let p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&progress.momenta));
         let memory = Memory { method: self.context.method.clone(), h: self.context.h, progress: progress.clone() };
         State { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
     }
@@ -354,7 +361,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
                 return Err(Error::Invalid { what: Input::State, why: why.into() });
             }
             self.progress = memory.progress.clone();
-            equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
+            equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
             return Ok(());
         }
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
@@ -373,11 +380,10 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let start = (state.k, state.q, state.p);
         let warnings = self.check_warnings.clone();
         let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
-        let mut progress =
-            equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, dq, kinds, split, method, warnings));
-        progress.kept = self.fresh_kept.clone();
+        let progress =
+            equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, dq, kinds, split, method, warnings));
         self.progress = progress;
-        equipped!(&mut self.schemes, e => e.closed_form = e.serves(&self.progress.momenta));
+        equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
         Ok(())
     }
 
@@ -392,7 +398,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     /// and the check of the method's hypotheses near its initial data are tested anew).
     pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
         let (h, steps) = (problem.step, problem.steps);
-        let renewable = equipped!(&self.schemes, e => e.renewable);
+        let renewable = equipped!(&self.schemes, e => e.renewable());
         if h.to_bits() != self.context.h.to_bits() || steps != self.context.steps || !renewable {
             return Ok(false);
         }
@@ -403,14 +409,17 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let (kinds, split) = (self.context.kinds, &self.context.split);
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
-        let mut progress =
-            equipped!(&self.schemes, e => Progress::cold(&e.scheme, start, setup.dq0, kinds, split, method, warnings));
-        let z = progress.predictor.predict().into();
-        if !equipped!(&self.schemes, e => e.derivatives.serve_first_step(&e.scheme, &e.scheme.base(progress.config.base()), &z))
+        let progress =
+            equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, setup.dq0, kinds, split, method, warnings));
+        let serve = equipped!(&self.schemes, e => e.sequence.iter().zip(&progress.stages).all(|(&d, memory)| {
+            let e = &e.distinct[d];
+            let z = memory.predictor.predict().into();
+            e.derivatives.serve_first_step(&e.scheme, &e.scheme.base(progress.config.base()), &z)
+        }));
+        if !serve
         {
             return Ok(false);
         }
-        progress.kept = self.fresh_kept.clone();
         self.progress = progress;
         self.check_warnings = check_warnings;
         self.context.legendre_at_start = legendre_at_start;
@@ -435,7 +444,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
             jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
         }
         let final_q = config.output(self.context.wrap_angles).to_vec();
-        let final_p = equipped!(&self.schemes, e => e.scheme.p_from_momenta(momenta)).to_vec();
+        let final_p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(momenta)).to_vec();
         let (k0, q0, p0) = record.start;
         let reference_error =
             self.context.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
@@ -467,20 +476,36 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
     }
 }
 
+/// The first step of a run, at which its derivatives are prepared and checked.
+struct FirstStep<const N: usize> {
+    q: Configuration<N>,
+    p: [f64; N],
+    /// The predictor's increment h · v0.
+    dq: [f64; N],
+}
+
 impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
-    /// The scheme with its equations and the derivatives of its generating function, prepared at the
-    /// first step of `progress`.
-    fn new(scheme: Sc, method: &Method, steps: usize, progress: &Progress<N>) -> Result<(Self, DerivativePath), Error> {
+    /// The scheme of a sub-step γh with its equations and the derivatives of its generating function,
+    /// prepared for `steps` evaluations at the `first` step (with the predictor's increment γ · dq).
+    fn new(
+        scheme: Sc,
+        method: &Method,
+        steps: usize,
+        first: &FirstStep<N>,
+        gamma: f64,
+    ) -> Result<(Self, DerivativePath), Error> {
+        let dq = if method.composition.is_basic() { first.dq } else { first.dq.map(|d| gamma * d) };
+        let momenta = scheme.momenta_from_p(&first.p);
         let (derivatives, path) = StepDerivatives::new(
             &scheme,
             method.differentiation,
             steps,
-            &scheme.base(progress.config.base()),
-            &progress.predictor.predict().into(),
-            &progress.momenta,
+            &scheme.base(first.q.base()),
+            &scheme.unknowns(&dq).into(),
+            &momenta,
         )
         .map_err(Error::NotCompiled)?;
-        let (equations, prepared) = (scheme.equations(), progress.momenta);
+        let (equations, prepared) = (scheme.equations(), momenta);
         let renewable = derivatives.independent_of_first_step(method.differentiation, steps);
         Ok((Self { equations, scheme, derivatives, prepared, closed_form: true, renewable }, path))
     }

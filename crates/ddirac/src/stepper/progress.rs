@@ -4,6 +4,7 @@
 
 use nalgebra::SVector;
 
+use super::stages::Stages;
 use super::{chart_watch, Context, Equipped, OwnedRow, StepReport};
 use crate::chart::Configuration;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
@@ -21,10 +22,17 @@ pub(super) struct Progress<const N: usize> {
     pub(super) momenta: [f64; N],
     /// The canonical momenta p_k of the energy watch.
     pub(super) p_now: [f64; N],
-    pub(super) predictor: Predictor<N>,
-    pub(super) kept: newton::KeptJacobian<N>,
+    /// The solver's memory of each sub-step of a step ([`Stages`]; one for the basic method).
+    pub(super) stages: Vec<StageMemory<N>>,
     pub(super) monitor: Monitor,
     pub(super) record: Record<N>,
+}
+
+/// What the solve of one sub-step remembers from step to step: its predictor and kept Jacobian.
+#[derive(Debug, Clone)]
+pub(super) struct StageMemory<const N: usize> {
+    pub(super) predictor: Predictor<N>,
+    pub(super) kept: newton::KeptJacobian<N>,
 }
 
 /// What the summary reports: statistics since the record started, and the warnings.
@@ -70,10 +78,13 @@ impl<const N: usize> Progress<N> {
         }
     }
 
-    /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq`; the
-    /// kept Jacobian is to be set by the caller.
+    /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq` (γ · dq
+    /// for a sub-step γh of a step) and kept Jacobian `kept`.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn cold(
         scheme: &impl Scheme<N>,
+        gammas: &[f64],
+        kept: &newton::KeptJacobian<N>,
         start: (usize, [f64; N], [f64; N]),
         dq: [f64; N],
         kinds: [CoordinateKind; N],
@@ -98,38 +109,78 @@ impl<const N: usize> Progress<N> {
             config: Configuration::new(q, kinds),
             momenta,
             p_now: p,
-            predictor: Predictor::new(scheme.unknowns(&dq)),
-            kept: newton::KeptJacobian::new(),
+            stages: gammas
+                .iter()
+                .map(|&g| {
+                    let dq = if gammas.len() == 1 { dq } else { dq.map(|d| g * d) };
+                    StageMemory { predictor: Predictor::new(scheme.unknowns(&dq)), kept: kept.clone() }
+                })
+                .collect(),
             monitor: Monitor::new(method.energy_jump),
             record,
         }
     }
 
-    /// Takes step k with scheme `e`. A failed solve or a non-finite state changes nothing but the kept
-    /// Jacobian; an energy jump under [`JumpAction::Fail`] is an error after the step is taken.
+    /// Takes step k as the sub-steps of `stages`. A failed solve or a non-finite state changes nothing
+    /// but the kept Jacobians; an energy jump under [`JumpAction::Fail`] is an error after the step is
+    /// taken.
     #[inline]
     pub(super) fn step<S: System<N>, Sc: Scheme<N>>(
         &mut self,
-        e: &Equipped<Sc, N>,
+        stages: &Stages<Sc, N>,
         context: &Context<'_, S, N>,
     ) -> Result<StepReport, Error> {
         let (method, h, split) = (&context.method, context.h, &context.split);
         let k = self.k;
         let t = k as f64 * h;
-        let base = e.scheme.base(self.config.base());
-        let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
-            solve_step(e, &base, &self.momenta, &self.predictor, &mut self.kept, &method.newton).map_err(|f| {
-                let predicted = e.scheme.increment(&self.predictor.predict());
-                let cause = self.singular_chart(context, &predicted);
-                Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
-            })?;
-        let dq = e.scheme.increment(&z);
-        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
-            return Err(Error::Diverged { step: k, t, what: "state" });
+        let action = method.energy_jump.action;
+        let watching = action != JumpAction::Ignore;
+        // The sub-steps advance a copy of the state, which the step commits once all have succeeded.
+        let (mut config, mut momenta, mut p) = (self.config.clone(), self.momenta, self.p_now);
+        let mut dq_step = [0.0; N];
+        // Σ L_d of the sub-steps (the composed map's generating function) and Σ ⟨p̄, Δq⟩.
+        let (mut discrete_energy, mut pv) = (0.0, 0.0);
+        let mut stats = newton::NewtonStats::default();
+        let mut fell_back = false;
+        let mut solved_z = [SVector::zeros(); 1];
+        let mut solved_zs = Vec::new();
+        let single = stages.sequence.len() == 1;
+        for (memory, &d) in self.stages.iter_mut().zip(&stages.sequence) {
+            let e = &stages.distinct[d];
+            let base = e.scheme.base(config.base());
+            let solved =
+                solve_step(e, &base, &momenta, &memory.predictor, &mut memory.kept, &method.newton).map_err(|f| {
+                    let predicted = e.scheme.increment(&memory.predictor.predict());
+                    let cause = singular_chart(context, config.base(), &predicted);
+                    Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
+                })?;
+            let dq = e.scheme.increment(&solved.z);
+            if dq.iter().chain(&solved.momenta_next).any(|v| !v.is_finite()) || !solved.discrete_energy.is_finite() {
+                return Err(Error::Diverged { step: k, t, what: "state" });
+            }
+            if watching {
+                let p_next = e.scheme.p_from_momenta(&solved.momenta_next);
+                pv += p.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5;
+                p = p_next;
+            }
+            discrete_energy += solved.discrete_energy;
+            stats.iterations += solved.stats.iterations;
+            stats.jacobians += solved.stats.jacobians;
+            stats.residual = stats.residual.max(solved.stats.residual);
+            fell_back |= solved.fell_back;
+            momenta = solved.momenta_next;
+            if single {
+                dq_step = dq;
+                solved_z[0] = solved.z;
+            } else {
+                config.advance(&dq);
+                dq_step.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
+                solved_zs.push(solved.z);
+            }
         }
-        if chart_watch::races(&context.angles, &dq) {
-            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq);
-            let warning = self.fast_angle(context, &dq, i, by);
+        if chart_watch::races(&context.angles, &dq_step) {
+            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq_step);
+            let warning = self.fast_angle(context, &dq_step, i, by);
             self.record.warnings.push(warning);
         }
         let record = &mut self.record;
@@ -138,17 +189,15 @@ impl<const N: usize> Progress<N> {
             let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
             record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
         }
-        let action = method.energy_jump.action;
-        let jump = if action != JumpAction::Ignore {
-            let p_next = e.scheme.p_from_momenta(&momenta_next);
-            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5 / h;
-            self.p_now = p_next;
+        let jump = if watching {
+            let pv = pv / h;
+            self.p_now = p;
             self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
         } else {
             None
         };
         let jump = jump.map(|jump| {
-            let cause = self.singular_chart(context, &dq);
+            let cause = singular_chart(context, self.config.base(), &dq_step);
             (jump, cause)
         });
         let record = &mut self.record;
@@ -157,9 +206,14 @@ impl<const N: usize> Progress<N> {
         record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
         record.newton.max_residual = record.newton.max_residual.max(stats.residual);
 
-        self.config.advance(&dq);
-        self.momenta = momenta_next;
-        self.predictor.push(z);
+        if single {
+            self.config.advance(&dq_step);
+            self.stages[0].predictor.push(solved_z[0]);
+        } else {
+            self.config = config;
+            self.stages.iter_mut().zip(solved_zs).for_each(|(memory, z)| memory.predictor.push(z));
+        }
+        self.momenta = momenta;
         self.k += 1;
         record.drift(split, &self.momenta);
         if let Some(drift) = self.monitor.take_drift() {
@@ -171,13 +225,6 @@ impl<const N: usize> Progress<N> {
         Ok(StepReport { k, discrete_energy, newton: stats })
     }
 
-    /// The chart watch's diagnosis at q_k for the increment `dq` ([`chart_watch::singular_chart`]).
-    #[cold]
-    fn singular_chart<S: System<N>>(&self, context: &Context<'_, S, N>, dq: &[f64; N]) -> Option<String> {
-        let v = dq.map(|d| d / context.h);
-        chart_watch::singular_chart(context.system, context.legendre_at_start, self.config.base(), &v)
-    }
-
     /// The warning for angle `i` advancing `by` radians in the step `dq` from q_k.
     #[cold]
     fn fast_angle<S: System<N>>(&self, context: &Context<'_, S, N>, dq: &[f64; N], i: usize, by: f64) -> Warning {
@@ -185,7 +232,7 @@ impl<const N: usize> Progress<N> {
         let at = Some((self.k, self.k as f64 * context.h));
         let advanced =
             format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP);
-        match self.singular_chart(context, dq) {
+        match singular_chart(context, self.config.base(), dq) {
             Some(cause) => Warning::new(
                 WarningKind::SingularChart,
                 at,
@@ -200,6 +247,13 @@ impl<const N: usize> Progress<N> {
             ),
         }
     }
+}
+
+/// The chart watch's diagnosis at `q` for the increment `dq` ([`chart_watch::singular_chart`]).
+#[cold]
+fn singular_chart<S: System<N>, const N: usize>(context: &Context<'_, S, N>, q: &[f64; N], dq: &[f64; N]) -> Option<String> {
+    let v = dq.map(|d| d / context.h);
+    chart_watch::singular_chart(context.system, context.legendre_at_start, q, &v)
 }
 
 /// A jump of the energy as the method asks: an error, or a warning.

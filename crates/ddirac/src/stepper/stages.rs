@@ -1,0 +1,92 @@
+//! The sub-steps of a step ([`crate::composition`]): the schemes of the distinct sub-step sizes γh,
+//! each with its equations and derivatives, and the order in which a step takes them. A step of the
+//! basic method is one sub-step of size h.
+
+use super::{Equipped, FirstStep};
+use crate::diagnostics::DerivativePath;
+use crate::scheme::Scheme;
+use crate::{Error, Input, Method, Rule};
+
+/// The schemes of a step's sub-steps.
+pub(super) struct Stages<Sc, const N: usize> {
+    /// One equipped scheme per distinct sub-step size γh, in the order of their first use.
+    pub(super) distinct: Vec<Equipped<Sc, N>>,
+    /// The sub-steps of a step, in order: the index of each one's scheme in `distinct`.
+    pub(super) sequence: Vec<usize>,
+    /// The fraction γ of each sub-step.
+    pub(super) gammas: Vec<f64>,
+}
+
+impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
+    /// The stages of `method`'s composition for step `h` in a run of `steps` steps from `first`, and
+    /// the derivative path of the first: `scheme(γh)` builds the scheme of a sub-step γh.
+    pub(super) fn new(
+        method: &Method,
+        h: f64,
+        steps: usize,
+        first: &FirstStep<N>,
+        mut scheme: impl FnMut(f64) -> Result<Sc, Error>,
+    ) -> Result<(Self, DerivativePath), Error> {
+        let gammas = method.composition.coefficients();
+        let mut values: Vec<f64> = Vec::new();
+        let sequence: Vec<usize> = gammas
+            .iter()
+            .map(|g| match values.iter().position(|v| v.to_bits() == g.to_bits()) {
+                Some(i) => i,
+                None => {
+                    values.push(*g);
+                    values.len() - 1
+                }
+            })
+            .collect();
+        let mut paths = Vec::new();
+        let distinct = values
+            .iter()
+            .enumerate()
+            .map(|(i, &g)| {
+                let count = sequence.iter().filter(|&&j| j == i).count();
+                // The basic step is taken with h itself (γ = 1), bit for bit as without compositions.
+                let step = if method.composition.is_basic() { h } else { g * h };
+                let (equipped, path) = Equipped::new(scheme(step)?, method, steps * count, first, g)?;
+                paths.push(path);
+                Ok(equipped)
+            })
+            .collect::<Result<Vec<_>, Error>>()?;
+        let path = paths.swap_remove(0);
+        Ok((Self { distinct, sequence, gammas }, path))
+    }
+
+    /// The scheme of the first sub-step (what does not depend on the sub-step size — bases, momenta,
+    /// increments — is read from it).
+    #[inline]
+    pub(super) fn first(&self) -> &Equipped<Sc, N> {
+        &self.distinct[0]
+    }
+
+    /// Whether every sub-step's derivatives serve other problems unchanged.
+    pub(super) fn renewable(&self) -> bool {
+        self.distinct.iter().all(|e| e.renewable)
+    }
+
+    /// Marks which closed-form steps serve a state with scheme momenta `momenta`.
+    pub(super) fn set_closed_form(&mut self, momenta: &[f64; N]) {
+        for e in &mut self.distinct {
+            e.closed_form = e.serves(momenta);
+        }
+    }
+}
+
+/// Refuses a composition of a basic method that is not symmetric: the left and right rules are each
+/// other's adjoints, and a symmetric composition of either alone keeps order 1.
+pub(crate) fn check_symmetric(method: &Method) -> Result<(), Error> {
+    if method.composition.is_basic() || matches!(method.rule, Rule::Midpoint | Rule::Trapezoid) {
+        return Ok(());
+    }
+    let why = format!(
+        "a composition of order {} needs a symmetric rule (`midpoint` or `trapezoid`); the `{}` rule is not \
+         symmetric, and its compositions keep order 1",
+        method.composition.order(),
+        method.rule.name()
+    );
+    Err(Error::Invalid { what: Input::Composition, why })
+}
