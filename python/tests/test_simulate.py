@@ -24,6 +24,23 @@ def test_a_text_oscillator_follows_its_exact_motion_to_second_order():
     assert np.all(np.abs(orders - 2.0) < 0.05), orders
 
 
+@pytest.mark.parametrize("order, composition", [(4, None), (6, None), (8, None), (4, "triple-jump")])
+def test_compositions_of_the_text_oscillator_reach_their_orders(order, composition):
+    errors = []
+    for steps in (20, 40, 80):
+        run = ddirac.simulate(oscillator(), q0=[1.0], p0=[0.0], steps=steps, duration=2.0, order=order,
+                              composition=composition)
+        errors.append(abs(run.q[-1, 0] - np.cos(4.0)))
+    observed = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(observed - order) < 0.2), (observed, errors)
+    assert run.summary["method"]["order"] == order
+
+
+def test_a_composition_of_the_left_rule_is_refused():
+    with pytest.raises(ddirac.Error, match="symmetric rule"):
+        ddirac.simulate(oscillator(), q0=[1.0], p0=[0.0], steps=10, duration=1.0, rule="left", order=4)
+
+
 def test_the_charged_particle_gyrates_as_in_the_paper():
     cp = ddirac.System.builtin("charged_particle")
     run = ddirac.simulate(cp, q0=[0, 0, 0, 0], v0=[1, 0, 1, 1], step=0.001, steps=2000, rule="midpoint",

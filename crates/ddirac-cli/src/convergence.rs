@@ -185,7 +185,9 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     files.extend(figures.iter().filter_map(|p| p.strip_prefix(&staging).ok()).map(PathBuf::from));
     run_dir.commit(&files)?;
     if !options.quiet {
-        println!("{}", text(&plan.name, duration, &rows, &reference));
+        let m = &plan.method;
+        let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
+        println!("{}", text(&plan.name, &method, duration, &rows, &reference));
         println!("  table      {}", dir.join(TABLE).display());
         println!("  figure     convergence.png, convergence.svg in {}", dir.display());
         println!("  wall time  {:.3} s", started.elapsed().as_secs_f64());
@@ -364,9 +366,9 @@ fn reference_note(rows: &[Row], reference: &Reference) -> Option<String> {
 }
 
 /// The printed table.
-fn text(system: &str, duration: f64, rows: &[Row], reference: &Reference) -> String {
+fn text(system: &str, method: &str, duration: f64, rows: &[Row], reference: &Reference) -> String {
     let mut lines = vec![
-        format!("{system}: convergence over T = {duration}, error {}", reference.against()),
+        format!("{system}: convergence over T = {duration} ({method}), error {}", reference.against()),
         format!("  {:>8}  {:>12}  {:>12}  {:>6}", "N", "h", "error", "order"),
     ];
     for r in rows {

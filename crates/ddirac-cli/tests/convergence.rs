@@ -154,3 +154,23 @@ fn no_progress_bar_when_stderr_is_not_a_terminal() {
     }
     assert!(!String::from_utf8_lossy(&output.stdout).contains("steps/s"));
 }
+
+/// `method.order` = 4, 6, 8 on the charged particle (midpoint rule): the observed orders of the
+/// table are those of the compositions, as Table 1 shows order 2 for the basic step. The rows are
+/// chosen above round-off (order 8 reaches 1e-11 at N = 100).
+#[test]
+fn charged_particle_shows_the_orders_of_the_compositions() {
+    for (order, steps) in [(4, "50,100,200,400"), (6, "25,50,100,200"), (8, "20,28,40,56,80")] {
+        let dir = TempDir::new(&format!("composition{order}"));
+        let set_order = format!("method.order={order}");
+        let output = convergence(CHARGED_PARTICLE, steps, &["--set", "method.rule=midpoint", "--set", &set_order], &dir);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let stdout = String::from_utf8(output.stdout).unwrap();
+        assert!(stdout.contains(&format!("order {order} (")), "the header names the composition: {stdout}");
+        let rows = table(&dir);
+        for (n, _, _, observed) in &rows[1..] {
+            let observed = observed.unwrap();
+            assert!((observed - f64::from(order)).abs() < 0.15, "order {order}, N = {n}: observed {observed}\n{stdout}");
+        }
+    }
+}

@@ -184,3 +184,26 @@ fn missing_and_unknown_names_in_initial_values_are_listed() {
         assert_fails(&run(&spec, &[], &dir), &dir, &["`initial.p` gives a value for `z`, which is not a coordinate"]);
     assert_eq!(underlined(&stderr, "p = {"), ["z"]);
 }
+
+/// `method.order` and `method.composition`: an order that does not exist, a set without the order
+/// it needs, a set of another order, and a composition of a rule that is not symmetric are spec
+/// errors pointing at the key.
+#[test]
+fn compositions_that_do_not_exist_are_refused_at_their_key() {
+    let dir = TempDir::new("composition-errors");
+    let spec = common::example("charged_particle.toml");
+    for (sets, expected) in [
+        (vec!["method.order=5"], "there is no method of order 5"),
+        (vec!["method.rule=\"midpoint\"", "method.composition=\"kahan-li\""], "has several orders"),
+        (vec!["method.rule=\"midpoint\"", "method.order=4", "method.composition=\"kahan-li\""], "order 4 has `suzuki`"),
+        (vec!["method.rule=\"midpoint\"", "method.composition=\"yoshida\""], "unknown composition `yoshida`"),
+        (vec!["method.order=4"], "needs a symmetric rule"),
+    ] {
+        let output = run(&spec, &sets, &dir);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{sets:?}: {stderr}");
+        assert!(stderr.contains(expected), "{sets:?}: expected {expected:?} in {stderr}");
+        assert!(stderr.contains("order =") || stderr.contains("composition ="), "{sets:?}: the key is shown: {stderr}");
+        assert!(!dir.out().exists(), "{sets:?}: nothing is written");
+    }
+}

@@ -130,30 +130,61 @@ impl<const N: usize> Progress<N> {
         stages: &Stages<Sc, N>,
         context: &Context<'_, S, N>,
     ) -> Result<StepReport, Error> {
-        let (method, h, split) = (&context.method, context.h, &context.split);
-        let k = self.k;
+        let taken = if stages.sequence.len() == 1 {
+            self.take_basic(stages.first(), context)?
+        } else {
+            self.take_composed(stages, context)?
+        };
+        self.commit(taken, context)
+    }
+
+    /// Solves step k as one step of the basic method.
+    #[inline(always)]
+    fn take_basic<S: System<N>, Sc: Scheme<N>>(
+        &mut self,
+        e: &Equipped<Sc, N>,
+        context: &Context<'_, S, N>,
+    ) -> Result<Taken<N>, Error> {
+        let (k, h) = (self.k, context.h);
         let t = k as f64 * h;
-        let action = method.energy_jump.action;
-        let watching = action != JumpAction::Ignore;
-        // The sub-steps advance a copy of the state, which the step commits once all have succeeded.
+        let memory = &mut self.stages[0];
+        let base = e.scheme.base(self.config.base());
+        let Solved { z, momenta_next, discrete_energy, stats, fell_back } =
+            solve_step(e, &base, &self.momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
+                .map_err(|f| newton_failed(context, k, self.config.base(), &e.scheme, &memory.predictor, f))?;
+        let dq = e.scheme.increment(&z);
+        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
+            return Err(Error::Diverged { step: k, t, what: "state" });
+        }
+        let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
+            let p_next = e.scheme.p_from_momenta(&momenta_next);
+            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5;
+            (pv, p_next)
+        });
+        Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None })
+    }
+
+    /// Solves step k as the sub-steps of a composition, each from where the one before ended.
+    fn take_composed<S: System<N>, Sc: Scheme<N>>(
+        &mut self,
+        stages: &Stages<Sc, N>,
+        context: &Context<'_, S, N>,
+    ) -> Result<Taken<N>, Error> {
+        let (k, h) = (self.k, context.h);
+        let t = k as f64 * h;
+        let watching = context.method.energy_jump.action != JumpAction::Ignore;
         let (mut config, mut momenta, mut p) = (self.config.clone(), self.momenta, self.p_now);
         let mut dq_step = [0.0; N];
         // Σ L_d of the sub-steps (the composed map's generating function) and Σ ⟨p̄, Δq⟩.
         let (mut discrete_energy, mut pv) = (0.0, 0.0);
         let mut stats = newton::NewtonStats::default();
         let mut fell_back = false;
-        let mut solved_z = [SVector::zeros(); 1];
-        let mut solved_zs = Vec::new();
-        let single = stages.sequence.len() == 1;
+        let mut zs = Vec::with_capacity(stages.sequence.len());
         for (memory, &d) in self.stages.iter_mut().zip(&stages.sequence) {
             let e = &stages.distinct[d];
             let base = e.scheme.base(config.base());
-            let solved =
-                solve_step(e, &base, &momenta, &memory.predictor, &mut memory.kept, &method.newton).map_err(|f| {
-                    let predicted = e.scheme.increment(&memory.predictor.predict());
-                    let cause = singular_chart(context, config.base(), &predicted);
-                    Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
-                })?;
+            let solved = solve_step(e, &base, &momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
+                .map_err(|f| newton_failed(context, k, config.base(), &e.scheme, &memory.predictor, f))?;
             let dq = e.scheme.increment(&solved.z);
             if dq.iter().chain(&solved.momenta_next).any(|v| !v.is_finite()) || !solved.discrete_energy.is_finite() {
                 return Err(Error::Diverged { step: k, t, what: "state" });
@@ -169,18 +200,25 @@ impl<const N: usize> Progress<N> {
             stats.residual = stats.residual.max(solved.stats.residual);
             fell_back |= solved.fell_back;
             momenta = solved.momenta_next;
-            if single {
-                dq_step = dq;
-                solved_z[0] = solved.z;
-            } else {
-                config.advance(&dq);
-                dq_step.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
-                solved_zs.push(solved.z);
-            }
+            config.advance(&dq);
+            dq_step.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
+            zs.push(solved.z);
         }
-        if chart_watch::races(&context.angles, &dq_step) {
-            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq_step);
-            let warning = self.fast_angle(context, &dq_step, i, by);
+        let pv = watching.then_some((pv, p));
+        let z = zs[0];
+        Ok(Taken { dq: dq_step, momenta_next: momenta, discrete_energy, pv, stats, fell_back, z, composed: Some((config, zs)) })
+    }
+
+    /// Commits a solved step: the chart watch, the record, the energy watch, the new state.
+    #[inline(always)]
+    fn commit<S: System<N>>(&mut self, taken: Taken<N>, context: &Context<'_, S, N>) -> Result<StepReport, Error> {
+        let (method, h, split) = (&context.method, context.h, &context.split);
+        let (k, action) = (self.k, method.energy_jump.action);
+        let t = k as f64 * h;
+        let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed } = taken;
+        if chart_watch::races(&context.angles, &dq) {
+            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq);
+            let warning = self.fast_angle(context, &dq, i, by);
             self.record.warnings.push(warning);
         }
         let record = &mut self.record;
@@ -189,15 +227,13 @@ impl<const N: usize> Progress<N> {
             let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
             record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
         }
-        let jump = if watching {
+        let jump = pv.and_then(|(pv, p_next)| {
             let pv = pv / h;
-            self.p_now = p;
+            self.p_now = p_next;
             self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
-        } else {
-            None
-        };
+        });
         let jump = jump.map(|jump| {
-            let cause = singular_chart(context, self.config.base(), &dq_step);
+            let cause = singular_chart(context, self.config.base(), &dq);
             (jump, cause)
         });
         let record = &mut self.record;
@@ -206,14 +242,17 @@ impl<const N: usize> Progress<N> {
         record.newton.max_iterations = record.newton.max_iterations.max(stats.iterations);
         record.newton.max_residual = record.newton.max_residual.max(stats.residual);
 
-        if single {
-            self.config.advance(&dq_step);
-            self.stages[0].predictor.push(solved_z[0]);
-        } else {
-            self.config = config;
-            self.stages.iter_mut().zip(solved_zs).for_each(|(memory, z)| memory.predictor.push(z));
+        match composed {
+            None => {
+                self.config.advance(&dq);
+                self.stages[0].predictor.push(z);
+            }
+            Some((config, zs)) => {
+                self.config = config;
+                self.stages.iter_mut().zip(zs).for_each(|(memory, z)| memory.predictor.push(z));
+            }
         }
-        self.momenta = momenta;
+        self.momenta = momenta_next;
         self.k += 1;
         record.drift(split, &self.momenta);
         if let Some(drift) = self.monitor.take_drift() {
@@ -274,6 +313,38 @@ pub(super) fn jumped(
     }
     warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), message));
     Ok(())
+}
+
+/// A step solved but not yet taken: the increment of the configuration, the next momenta, the
+/// discrete energy (Σ L_d of the sub-steps), Σ⟨p̄, Δq⟩ with the next canonical momenta when the energy
+/// is watched, how the solves went, the unknowns (of the first sub-step) and, for a composition, the
+/// configuration it reached with each sub-step's unknowns.
+struct Taken<const N: usize> {
+    dq: [f64; N],
+    momenta_next: [f64; N],
+    discrete_energy: f64,
+    pv: Option<(f64, [f64; N])>,
+    stats: newton::NewtonStats,
+    fell_back: bool,
+    z: SVector<f64, N>,
+    composed: Option<(Configuration<N>, Vec<SVector<f64, N>>)>,
+}
+
+/// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the
+/// predicted increment.
+#[cold]
+fn newton_failed<S: System<N>, Sc: Scheme<N>, const N: usize>(
+    context: &Context<'_, S, N>,
+    k: usize,
+    q: &[f64; N],
+    scheme: &Sc,
+    predictor: &Predictor<N>,
+    f: newton::NewtonFailure,
+) -> Error {
+    let predicted = scheme.increment(&predictor.predict());
+    let cause = singular_chart(context, q, &predicted);
+    let t = k as f64 * context.h;
+    Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
 }
 
 /// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
