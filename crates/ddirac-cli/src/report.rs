@@ -134,6 +134,8 @@ struct NewtonJson {
     total_jacobians: usize,
     max_iterations: usize,
     max_residual: f64,
+    subdivided_steps: usize,
+    max_subdivision: usize,
 }
 
 /// The content of `summary.json`.
@@ -190,6 +192,8 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             total_jacobians: summary.newton.total_jacobians,
             max_iterations: summary.newton.max_iterations,
             max_residual: summary.newton.max_residual,
+            subdivided_steps: summary.newton.subdivided_steps,
+            max_subdivision: summary.newton.max_subdivision,
         },
         wall_seconds: summary.wall_seconds,
         total_wall_seconds: total_seconds,
@@ -237,7 +241,7 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
             summary.newton.max_iterations,
             summary.newton.total_jacobians,
             summary.newton.max_residual
-        ),
+        ) + &subdivided(&summary.newton),
         format!("  derivatives      {}", summary.derivatives),
         format!("  reference error  {reference}"),
         warnings(&summary.warnings),
@@ -270,5 +274,13 @@ pub(crate) fn composition(c: ddirac::Composition) -> String {
         String::new()
     } else {
         format!(", order {} ({}, {} sub-steps)", c.order(), c.name(), c.coefficients().len())
+    }
+}
+
+/// "; k steps taken as up to m sub-steps" when failed steps were subdivided, nothing otherwise.
+fn subdivided(newton: &ddirac::diagnostics::NewtonSummary) -> String {
+    match newton.subdivided_steps {
+        0 => String::new(),
+        k => format!("; {k} failed steps taken as up to {} sub-steps", newton.max_subdivision),
     }
 }

@@ -163,14 +163,18 @@ fn charged_particle_shows_the_orders_of_the_compositions() {
     for (order, steps) in [(4, "50,100,200,400"), (6, "25,50,100,200"), (8, "20,28,40,56,80")] {
         let dir = TempDir::new(&format!("composition{order}"));
         let set_order = format!("method.order={order}");
-        let output = convergence(CHARGED_PARTICLE, steps, &["--set", "method.rule=midpoint", "--set", &set_order], &dir);
+        let output =
+            convergence(CHARGED_PARTICLE, steps, &["--set", "method.rule=midpoint", "--set", &set_order], &dir);
         assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
         let stdout = String::from_utf8(output.stdout).unwrap();
         assert!(stdout.contains(&format!("order {order} (")), "the header names the composition: {stdout}");
         let rows = table(&dir);
         for (n, _, _, observed) in &rows[1..] {
             let observed = observed.unwrap();
-            assert!((observed - f64::from(order)).abs() < 0.15, "order {order}, N = {n}: observed {observed}\n{stdout}");
+            assert!(
+                (observed - f64::from(order)).abs() < 0.15,
+                "order {order}, N = {n}: observed {observed}\n{stdout}"
+            );
         }
     }
 }

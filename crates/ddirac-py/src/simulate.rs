@@ -66,7 +66,9 @@ impl MethodKeys {
         let (reduced, check_invariance) = (self.reduced, self.check_invariance);
         let order = match self.order.map(u8::try_from) {
             Some(Ok(order)) => Some(order),
-            Some(Err(_)) => return Err(raise(format!("`order` = {} is not one of: 2, 4, 6, 8", self.order.unwrap_or(0)))),
+            Some(Err(_)) => {
+                return Err(raise(format!("`order` = {} is not one of: 2, 4, 6, 8", self.order.unwrap_or(0))))
+            }
             None => None,
         };
         let composition = ddirac::Composition::select(order, self.composition.as_deref()).map_err(raise)?;
@@ -388,6 +390,8 @@ fn summary_dict<'py>(
     newton.set_item("total_jacobians", s.newton.total_jacobians)?;
     newton.set_item("max_iterations", s.newton.max_iterations)?;
     newton.set_item("max_residual", s.newton.max_residual)?;
+    newton.set_item("subdivided_steps", s.newton.subdivided_steps)?;
+    newton.set_item("max_subdivision", s.newton.max_subdivision)?;
     d.set_item("newton", newton)?;
     d.set_item("wall_seconds", s.wall_seconds)?;
     d.set_item("reference_error", s.reference_error)?;

@@ -91,6 +91,10 @@ pub struct NewtonSummary {
     pub max_iterations: usize,
     /// Largest accepted residual norm.
     pub max_residual: f64,
+    /// Steps that failed and were taken as equal sub-steps instead.
+    pub subdivided_steps: usize,
+    /// The largest number of sub-steps such a step took (0 when none).
+    pub max_subdivision: usize,
 }
 
 /// How a run evaluated the derivatives of its step equations.
@@ -156,11 +160,15 @@ pub enum WarningKind {
     /// The energy moved away from its initial value by more than [`crate::ENERGY_DRIFT`] of its scale:
     /// far more than the bounded error of a step that resolves the motion.
     EnergyDrift,
+    /// A step failed (Newton's method, a non-finite state) and was taken as equal sub-steps instead
+    /// (up to [`crate::MAX_SUBDIVISION`]): the run went on, with the same structure, through motion
+    /// the step size does not resolve there.
+    Subdivided,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
-    /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`.
+    /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`, `subdivided`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
@@ -170,6 +178,7 @@ impl WarningKind {
             WarningKind::UnderResolved => "under_resolved",
             WarningKind::SingularChart => "singular_chart",
             WarningKind::EnergyDrift => "energy_drift",
+            WarningKind::Subdivided => "subdivided",
         }
     }
 }

@@ -25,8 +25,8 @@ pub mod ad;
 pub mod baselines;
 pub mod chart;
 mod check;
-pub mod composition;
 pub mod compiled;
+pub mod composition;
 pub mod diagnostics;
 mod energy_jump;
 pub mod ensemble;
@@ -64,5 +64,7 @@ pub use num_dual;
 pub use problem::{Differentiation, InitialData, InitialMomentum, Method, OutputOptions, Problem, Variant};
 pub use reduction::connection::Connection;
 pub use scalar::{RuntimeInput, Scalar};
-pub use stepper::{OwnedRow, State, StepReport, Stepper, LEGENDRE_DROP, MAX_ANGLE_STEP};
+pub use stepper::{
+    OwnedRow, State, StepReport, Stepper, IMPLAUSIBLE_ENERGY_CHANGE, LEGENDRE_DROP, MAX_ANGLE_STEP, MAX_SUBDIVISION,
+};
 pub use system::{Coordinate, CoordinateKind, Role, Split, System};

@@ -90,6 +90,11 @@ pub(crate) trait Scheme<const N: usize> {
 
     /// Canonical momenta p from scheme momenta.
     fn p_from_momenta(&self, momenta: &[f64; N]) -> [f64; N];
+
+    /// The same scheme with step size `step` (the sub-steps of a composition or of a subdivided step).
+    fn resized(&self, step: f64) -> Self
+    where
+        Self: Sized;
 }
 
 /// Under [`Differentiation::Auto`], runs of fewer steps use dual numbers: tracing and compiling take

@@ -7,7 +7,9 @@ mod common;
 
 use common::{log_log_slope, max_scaled_row_diff, relative_diff, run};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, Kepler, TwoBody};
-use ddirac::{Composition, Error, InitialMomentum, Input, Method, NewtonOptions, Problem, Rule, State, Stepper, System, Variant};
+use ddirac::{
+    Composition, Error, InitialMomentum, Input, Method, NewtonOptions, Problem, Rule, State, Stepper, System, Variant,
+};
 
 /// Every set with the step counts over which its error is in its asymptotic regime and above
 /// round-off, on the charged particle (T = 20) and on Kepler's eccentric orbit (T = 20).
@@ -56,7 +58,15 @@ fn compositions_reach_their_orders_on_the_charged_particle_and_kepler_in_every_f
                 for reduced in [false, true] {
                     let method = composed(rule, variant, reduced, composition);
                     let runs = [
-                        ("charged particle", observed_order(&ChargedParticle::default(), ChargedParticle::paper_problem, &particle_steps, &method)),
+                        (
+                            "charged particle",
+                            observed_order(
+                                &ChargedParticle::default(),
+                                ChargedParticle::paper_problem,
+                                &particle_steps,
+                                &method,
+                            ),
+                        ),
                         ("Kepler", observed_order(&Kepler::default(), kepler_problem, &kepler_steps, &method)),
                     ];
                     for (system, (slope, errors)) in runs {
@@ -86,13 +96,19 @@ fn reduced_composed_runs_equal_unreduced_composed_runs() {
             let reduced = run(&system, &problem, &composed(Rule::Midpoint, variant, true, composition));
             let dq = max_scaled_row_diff(&reduced.q, &unreduced.q);
             let dp = max_scaled_row_diff(&reduced.p, &unreduced.p);
-            eprintln!("double spherical pendulum, {composition}, {variant:?}: rows differ by {dq:.2e} (q), {dp:.2e} (p)");
+            eprintln!(
+                "double spherical pendulum, {composition}, {variant:?}: rows differ by {dq:.2e} (q), {dp:.2e} (p)"
+            );
             assert!(dq <= 1e-11 && dp <= 1e-10, "{composition}, {variant:?}: q rows {dq:e}, p rows {dp:e}");
 
             let system = TwoBody::default();
             let k = Some(system.centre_of_mass_connection().unwrap());
-            let problem =
-                Problem::new(0.02, 500, vec![0.3, -0.2, 1.0, 0.0], InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]));
+            let problem = Problem::new(
+                0.02,
+                500,
+                vec![0.3, -0.2, 1.0, 0.0],
+                InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]),
+            );
             let unreduced = run(&system, &problem, &composed(Rule::Trapezoid, variant, false, composition));
             let mut method = composed(Rule::Trapezoid, variant, true, composition);
             method.connection = k;
@@ -116,8 +132,12 @@ fn composed_runs_conserve_the_momentum_map_exactly() {
             let summary = run(&Kepler::default(), &kepler_problem(400), &method).summary;
             let drift = summary.momentum_map.max_relative_drift.unwrap();
             let system = TwoBody::default();
-            let problem =
-                Problem::new(0.02, 500, vec![0.3, -0.2, 1.0, 0.0], InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]));
+            let problem = Problem::new(
+                0.02,
+                500,
+                vec![0.3, -0.2, 1.0, 0.0],
+                InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]),
+            );
             let two_body = run(&system, &problem, &method).summary.momentum_map.max_relative_drift.unwrap();
             eprintln!("{composition}, reduced {reduced}: momentum map drift {drift:.2e} (Kepler), {two_body:.2e} (two bodies)");
             assert!(drift <= 1e-13 && two_body <= 1e-13, "{composition}, reduced {reduced}: {drift:e}, {two_body:e}");
@@ -138,7 +158,8 @@ fn one_step<S: System<N>, const N: usize>(stepper: &mut Stepper<'_, S, N>, q: [f
 #[test]
 fn the_composed_one_step_map_is_symplectic() {
     let system = TwoBody::default();
-    let problem = Problem::new(0.05, 100, vec![0.3, -0.2, 1.0, 0.0], InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]));
+    let problem =
+        Problem::new(0.05, 100, vec![0.3, -0.2, 1.0, 0.0], InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]));
     let (q0, p0) = ([0.3, -0.2, 1.0, 0.1], [0.2, 0.1, -0.3, 0.6]);
     for composition in [Composition::Suzuki5, Composition::KahanLi9, Composition::KahanLi17] {
         for reduced in [false, true] {
@@ -154,7 +175,11 @@ fn the_composed_one_step_map_is_symplectic() {
                 .map(|j| {
                     let mut shifted = |by: f64| {
                         let (mut q, mut p) = (q0, p0);
-                        if j < 4 { q[j] += by } else { p[j - 4] += by }
+                        if j < 4 {
+                            q[j] += by
+                        } else {
+                            p[j - 4] += by
+                        }
                         one_step(&mut stepper, q, p)
                     };
                     let (plus, minus) = (shifted(eps), shifted(-eps));
@@ -170,7 +195,10 @@ fn the_composed_one_step_map_is_symplectic() {
             let mut worst: f64 = 0.0;
             for a in 0..8 {
                 for b in 0..8 {
-                    let mtjm: f64 = (0..8).flat_map(|i| (0..8).map(move |j| (i, j))).map(|(i, j)| m(i, a) * j_form(i, j) * m(j, b)).sum();
+                    let mtjm: f64 = (0..8)
+                        .flat_map(|i| (0..8).map(move |j| (i, j)))
+                        .map(|(i, j)| m(i, a) * j_form(i, j) * m(j, b))
+                        .sum();
                     worst = worst.max((mtjm - j_form(a, b)).abs());
                 }
             }
@@ -198,7 +226,9 @@ fn composed_runs_are_time_symmetric() {
             let back = run(&system, &problem, &method).summary;
             let dq = (back.final_q[0] - 1.0).abs().max(back.final_q[1].abs());
             let dp = back.final_p[0].abs().max((back.final_p[1] + 0.7).abs());
-            eprintln!("{composition}, {rule:?}, reduced {reduced}: back at the start within {dq:.2e} (q), {dp:.2e} (p)");
+            eprintln!(
+                "{composition}, {rule:?}, reduced {reduced}: back at the start within {dq:.2e} (q), {dp:.2e} (p)"
+            );
             assert!(dq <= 1e-11 && dp <= 1e-11, "{composition}: returns within {dq:e} (q), {dp:e} (p)");
         }
     }

@@ -3,8 +3,8 @@
 
 use std::ops::Range;
 
-use ddirac::systems::BuiltIn;
 use ddirac::composition::{self, Composition};
+use ddirac::systems::BuiltIn;
 use ddirac::{
     Coordinate, Differentiation, DynSystem, EnergyJump, JumpAction, Method, NewtonOptions, OutputOptions, Problem,
     Role, Rule, Variant,

@@ -29,6 +29,10 @@ impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
         *q
     }
 
+    fn resized(&self, step: f64) -> Self {
+        Self { ld: DiscreteLagrangian::new(self.ld.system, self.ld.rule, step) }
+    }
+
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
         D: Scalar + std::ops::Add<B, Output = D>,

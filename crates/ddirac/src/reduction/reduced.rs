@@ -38,7 +38,7 @@ use nalgebra::SVector;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::reduction::trivialization::{lambda_hat, lambda_hat_inv};
 use crate::scheme::{Scheme, StepEquations};
-use crate::{System, Variant};
+use crate::{DiscreteLagrangian, System, Variant};
 
 /// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
 pub(crate) struct LagrangePoincareDirac<'a, S> {
@@ -83,6 +83,16 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
 }
 
 impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
+    fn resized(&self, step: f64) -> Self {
+        let ld = DiscreteLagrangian::new(self.reduction.ld.system, self.reduction.ld.rule, step);
+        let reduction = ReducedLagrangian {
+            ld,
+            split: self.reduction.split.clone(),
+            connection: self.reduction.connection.clone(),
+        };
+        Self { reduction, variant: self.variant, flat: self.flat }
+    }
+
     fn base(&self, q: &[f64; N]) -> [f64; N] {
         let mut base = *q;
         for &gj in &self.reduction.split.group {

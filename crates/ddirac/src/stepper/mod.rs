@@ -32,8 +32,10 @@ use crate::{
 };
 
 pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
+pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
 use stages::Stages;
+pub use stages::MAX_SUBDIVISION;
 use state::Memory;
 pub use state::{OwnedRow, State, StepReport};
 
@@ -380,8 +382,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let start = (state.k, state.q, state.p);
         let warnings = self.check_warnings.clone();
         let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
-        let progress =
-            equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, dq, kinds, split, method, warnings));
+        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, dq, kinds, split, method, warnings));
         self.progress = progress;
         equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
         Ok(())
@@ -409,15 +410,13 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let (kinds, split) = (self.context.kinds, &self.context.split);
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
-        let progress =
-            equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, setup.dq0, kinds, split, method, warnings));
+        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, setup.dq0, kinds, split, method, warnings));
         let serve = equipped!(&self.schemes, e => e.sequence.iter().zip(&progress.stages).all(|(&d, memory)| {
             let e = &e.distinct[d];
             let z = memory.predictor.predict().into();
             e.derivatives.serve_first_step(&e.scheme, &e.scheme.base(progress.config.base()), &z)
         }));
-        if !serve
-        {
+        if !serve {
             return Ok(false);
         }
         self.progress = progress;
@@ -494,7 +493,8 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
         first: &FirstStep<N>,
         gamma: f64,
     ) -> Result<(Self, DerivativePath), Error> {
-        let dq = if method.composition.is_basic() { first.dq } else { first.dq.map(|d| gamma * d) };
+        // γ = 1 gives the increment itself, bit for bit.
+        let dq = first.dq.map(|d| gamma * d);
         let momenta = scheme.momenta_from_p(&first.p);
         let (derivatives, path) = StepDerivatives::new(
             &scheme,

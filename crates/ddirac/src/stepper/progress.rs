@@ -4,8 +4,8 @@
 
 use nalgebra::SVector;
 
-use super::stages::Stages;
-use super::{chart_watch, Context, Equipped, OwnedRow, StepReport};
+use super::stages::{Stages, MAX_SUBDIVISION};
+use super::{chart_watch, Context, Equipped, FirstStep, OwnedRow, StepReport};
 use crate::chart::Configuration;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
 use crate::energy_jump::{Jump, JumpAction, Monitor};
@@ -25,8 +25,17 @@ pub(super) struct Progress<const N: usize> {
     /// The solver's memory of each sub-step of a step ([`Stages`]; one for the basic method).
     pub(super) stages: Vec<StageMemory<N>>,
     pub(super) monitor: Monitor,
+    /// The discrete energy of the last step taken (NaN before the first), for the plausibility
+    /// test of the next ([`IMPLAUSIBLE_ENERGY_CHANGE`]).
+    pub(super) last_energy: f64,
     pub(super) record: Record<N>,
 }
+
+/// A solved step whose discrete energy differs from the last step's by more than this fraction of
+/// the energy's scale is taken as sub-steps instead: Newton's method converged, but most likely to
+/// another root of the step equations (a well-resolved step changes the energy by far less; the
+/// paper's runs change it by at most 0.3 % in a step, at their closest pole passages).
+pub const IMPLAUSIBLE_ENERGY_CHANGE: f64 = 1e-2;
 
 /// What the solve of one sub-step remembers from step to step: its predictor and kept Jacobian.
 #[derive(Debug, Clone)]
@@ -112,11 +121,12 @@ impl<const N: usize> Progress<N> {
             stages: gammas
                 .iter()
                 .map(|&g| {
-                    let dq = if gammas.len() == 1 { dq } else { dq.map(|d| g * d) };
+                    let dq = dq.map(|d| g * d);
                     StageMemory { predictor: Predictor::new(scheme.unknowns(&dq)), kept: kept.clone() }
                 })
                 .collect(),
             monitor: Monitor::new(method.energy_jump),
+            last_energy: f64::NAN,
             record,
         }
     }
@@ -131,11 +141,103 @@ impl<const N: usize> Progress<N> {
         context: &Context<'_, S, N>,
     ) -> Result<StepReport, Error> {
         let taken = if stages.sequence.len() == 1 {
-            self.take_basic(stages.first(), context)?
+            self.take_basic(stages.first(), context)
         } else {
-            self.take_composed(stages, context)?
+            self.take_composed(stages, None, context)
+        };
+        let taken = match taken {
+            Ok(taken) => match self.implausible(&taken, context) {
+                None => taken,
+                Some(failure) => self.subdivide(stages, context, failure, Some(taken))?,
+            },
+            Err(failure @ (Error::Newton { .. } | Error::Diverged { .. })) => {
+                self.subdivide(stages, context, failure, None)?
+            }
+            Err(e) => return Err(e),
         };
         self.commit(taken, context)
+    }
+
+    /// Why a solved step cannot be trusted, if it cannot: its discrete energy (when the energy is
+    /// watched) moved from the last step's by more than [`IMPLAUSIBLE_ENERGY_CHANGE`] of its scale.
+    #[inline]
+    fn implausible<S: System<N>>(&self, taken: &Taken<N>, context: &Context<'_, S, N>) -> Option<Error> {
+        let (pv, _) = taken.pv?;
+        let h = context.h;
+        let (pv, energy) = (pv / h, pv / h - taken.discrete_energy / h);
+        let scale = self.last_energy.abs().max(pv.abs());
+        let change = (energy - self.last_energy).abs();
+        (change > IMPLAUSIBLE_ENERGY_CHANGE * scale).then(|| implausible_energy(self.k, context.h, change / scale))
+    }
+
+    /// Takes step k, which failed with `failure` (or was `solved` implausibly), as m = 2, 4, … up to
+    /// [`MAX_SUBDIVISION`] equal steps of its stages: each is a step of the same scheme, so the step
+    /// stays symplectic and the momentum map exact. The predictors start afresh from the step's
+    /// increment. When no subdivision converges: the implausible solution if there is one (the energy
+    /// watch then judges it), else `failure` with the subdivisions tried.
+    #[cold]
+    fn subdivide<S: System<N>, Sc: Scheme<N>>(
+        &mut self,
+        stages: &Stages<Sc, N>,
+        context: &Context<'_, S, N>,
+        failure: Error,
+        solved: Option<Taken<N>>,
+    ) -> Result<Taken<N>, Error> {
+        let scheme = &stages.first().scheme;
+        let predicted = self.stages.iter().fold([0.0; N], |mut sum, memory| {
+            let dq = scheme.increment(&memory.predictor.predict());
+            sum.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
+            sum
+        });
+        let first = FirstStep { q: self.config.clone(), p: scheme.p_from_momenta(&self.momenta), dq: predicted };
+        let mut m = 2;
+        while m <= MAX_SUBDIVISION {
+            let sub = stages.subdivided(m, &context.method, &first)?;
+            let mut memory: Vec<StageMemory<N>> = sub
+                .sequence
+                .iter()
+                .zip(&sub.gammas)
+                .map(|(&d, g)| {
+                    let dq = predicted.map(|x| g * x);
+                    StageMemory {
+                        predictor: Predictor::new(sub.distinct[d].scheme.unknowns(&dq)),
+                        kept: newton::KeptJacobian::new(),
+                    }
+                })
+                .collect();
+            let last = m == MAX_SUBDIVISION;
+            match self.take_composed(&sub, Some(&mut memory), context) {
+                Ok(taken) if !last && self.implausible(&taken, context).is_some() => m *= 2,
+                Ok(mut taken) => {
+                    for (memory, g) in self.stages.iter_mut().zip(&stages.gammas) {
+                        memory.predictor = Predictor::new(scheme.unknowns(&taken.dq.map(|x| g * x)));
+                    }
+                    if let Some((_, zs)) = &mut taken.composed {
+                        zs.clear();
+                    }
+                    let (k, t) = (self.k, self.k as f64 * context.h);
+                    let record = &mut self.record;
+                    record.newton.subdivided_steps += 1;
+                    record.newton.max_subdivision = record.newton.max_subdivision.max(m);
+                    let message = format!("a step failed ({failure}) and was taken as {m} sub-steps");
+                    record.warnings.push(Warning::new(WarningKind::Subdivided, Some((k, t)), message));
+                    return Ok(taken);
+                }
+                Err(Error::Newton { .. } | Error::Diverged { .. }) => m *= 2,
+                Err(e) => return Err(e),
+            }
+        }
+        if let Some(solved) = solved {
+            return Ok(solved);
+        }
+        Err(match failure {
+            Error::Newton { step, t, iterations, residual, reason, cause } => {
+                let tried = format!("nor as 2, 4, …, {MAX_SUBDIVISION} sub-steps");
+                let cause = Some(cause.map_or(tried.clone(), |c| format!("{c}; {tried}")));
+                Error::Newton { step, t, iterations, residual, reason, cause }
+            }
+            other => other,
+        })
     }
 
     /// Solves step k as one step of the basic method.
@@ -164,10 +266,12 @@ impl<const N: usize> Progress<N> {
         Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None })
     }
 
-    /// Solves step k as the sub-steps of a composition, each from where the one before ended.
+    /// Solves step k as the sub-steps of a composition, each from where the one before ended, with
+    /// the solver memory of each sub-step (`memory`, else the progress's own).
     fn take_composed<S: System<N>, Sc: Scheme<N>>(
         &mut self,
         stages: &Stages<Sc, N>,
+        memory: Option<&mut [StageMemory<N>]>,
         context: &Context<'_, S, N>,
     ) -> Result<Taken<N>, Error> {
         let (k, h) = (self.k, context.h);
@@ -180,7 +284,11 @@ impl<const N: usize> Progress<N> {
         let mut stats = newton::NewtonStats::default();
         let mut fell_back = false;
         let mut zs = Vec::with_capacity(stages.sequence.len());
-        for (memory, &d) in self.stages.iter_mut().zip(&stages.sequence) {
+        let memories = match memory {
+            Some(memory) => memory,
+            None => &mut self.stages[..],
+        };
+        for (memory, &d) in memories.iter_mut().zip(&stages.sequence) {
             let e = &stages.distinct[d];
             let base = e.scheme.base(config.base());
             let solved = solve_step(e, &base, &momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
@@ -206,7 +314,16 @@ impl<const N: usize> Progress<N> {
         }
         let pv = watching.then_some((pv, p));
         let z = zs[0];
-        Ok(Taken { dq: dq_step, momenta_next: momenta, discrete_energy, pv, stats, fell_back, z, composed: Some((config, zs)) })
+        Ok(Taken {
+            dq: dq_step,
+            momenta_next: momenta,
+            discrete_energy,
+            pv,
+            stats,
+            fell_back,
+            z,
+            composed: Some((config, zs)),
+        })
     }
 
     /// Commits a solved step: the chart watch, the record, the energy watch, the new state.
@@ -230,7 +347,8 @@ impl<const N: usize> Progress<N> {
         let jump = pv.and_then(|(pv, p_next)| {
             let pv = pv / h;
             self.p_now = p_next;
-            self.monitor.push((k, t), pv - discrete_energy / h, pv.abs())
+            self.last_energy = pv - discrete_energy / h;
+            self.monitor.push((k, t), self.last_energy, pv.abs())
         });
         let jump = jump.map(|jump| {
             let cause = singular_chart(context, self.config.base(), &dq);
@@ -290,7 +408,11 @@ impl<const N: usize> Progress<N> {
 
 /// The chart watch's diagnosis at `q` for the increment `dq` ([`chart_watch::singular_chart`]).
 #[cold]
-fn singular_chart<S: System<N>, const N: usize>(context: &Context<'_, S, N>, q: &[f64; N], dq: &[f64; N]) -> Option<String> {
+fn singular_chart<S: System<N>, const N: usize>(
+    context: &Context<'_, S, N>,
+    q: &[f64; N],
+    dq: &[f64; N],
+) -> Option<String> {
     let v = dq.map(|d| d / context.h);
     chart_watch::singular_chart(context.system, context.legendre_at_start, q, &v)
 }
@@ -328,6 +450,17 @@ struct Taken<const N: usize> {
     fell_back: bool,
     z: SVector<f64, N>,
     composed: Option<(Configuration<N>, Vec<SVector<f64, N>>)>,
+}
+
+/// The failure of a step whose discrete energy moved by `relative` of its scale.
+#[cold]
+fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
+    let message = format!(
+        "its discrete energy moved by {:.1} % from the last step's, more than the {} % a resolved step moves it",
+        relative * 100.0,
+        IMPLAUSIBLE_ENERGY_CHANGE * 100.0
+    );
+    Error::EnergyJump { step: k, t: k as f64 * h, message }
 }
 
 /// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the

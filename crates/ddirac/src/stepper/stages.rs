@@ -2,10 +2,15 @@
 //! each with its equations and derivatives, and the order in which a step takes them. A step of the
 //! basic method is one sub-step of size h.
 
+use std::sync::{Arc, Mutex, PoisonError};
+
 use super::{Equipped, FirstStep};
 use crate::diagnostics::DerivativePath;
 use crate::scheme::Scheme;
 use crate::{Error, Input, Method, Rule};
+
+/// A failed step is taken again as m = 2, 4, … equal sub-steps, up to this many.
+pub const MAX_SUBDIVISION: usize = 64;
 
 /// The schemes of a step's sub-steps.
 pub(super) struct Stages<Sc, const N: usize> {
@@ -15,6 +20,10 @@ pub(super) struct Stages<Sc, const N: usize> {
     pub(super) sequence: Vec<usize>,
     /// The fraction γ of each sub-step.
     pub(super) gammas: Vec<f64>,
+    /// The step h.
+    h: f64,
+    /// The stages of a step taken as m equal steps of these stages, prepared when first needed.
+    subdivided: Mutex<Vec<(usize, Arc<Stages<Sc, N>>)>>,
 }
 
 impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
@@ -25,9 +34,20 @@ impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
         h: f64,
         steps: usize,
         first: &FirstStep<N>,
+        scheme: impl FnMut(f64) -> Result<Sc, Error>,
+    ) -> Result<(Self, DerivativePath), Error> {
+        Self::with_fractions(method, h, method.composition.coefficients(), steps, first, scheme)
+    }
+
+    /// The stages of sub-steps γᵢh for the fractions `gammas`.
+    fn with_fractions(
+        method: &Method,
+        h: f64,
+        gammas: Vec<f64>,
+        steps: usize,
+        first: &FirstStep<N>,
         mut scheme: impl FnMut(f64) -> Result<Sc, Error>,
     ) -> Result<(Self, DerivativePath), Error> {
-        let gammas = method.composition.coefficients();
         let mut values: Vec<f64> = Vec::new();
         let sequence: Vec<usize> = gammas
             .iter()
@@ -45,15 +65,30 @@ impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
             .enumerate()
             .map(|(i, &g)| {
                 let count = sequence.iter().filter(|&&j| j == i).count();
-                // The basic step is taken with h itself (γ = 1), bit for bit as without compositions.
-                let step = if method.composition.is_basic() { h } else { g * h };
-                let (equipped, path) = Equipped::new(scheme(step)?, method, steps * count, first, g)?;
+                // γ = 1 gives h itself, bit for bit.
+                let (equipped, path) = Equipped::new(scheme(g * h)?, method, steps * count, first, g)?;
                 paths.push(path);
                 Ok(equipped)
             })
             .collect::<Result<Vec<_>, Error>>()?;
         let path = paths.swap_remove(0);
-        Ok((Self { distinct, sequence, gammas }, path))
+        Ok((Self { distinct, sequence, gammas, h, subdivided: Mutex::new(Vec::new()) }, path))
+    }
+
+    /// The stages of a step taken as `m` equal steps of these stages (sub-steps γᵢh/m), prepared at
+    /// `first` the first time they are asked for (by dual numbers unless the method requires compiled
+    /// derivatives: they serve the rare steps that need them).
+    pub(super) fn subdivided(&self, m: usize, method: &Method, first: &FirstStep<N>) -> Result<Arc<Self>, Error> {
+        let mut prepared = self.subdivided.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some((_, stages)) = prepared.iter().find(|(count, _)| *count == m) {
+            return Ok(stages.clone());
+        }
+        let gammas: Vec<f64> = (0..m).flat_map(|_| self.gammas.iter().map(move |g| g / m as f64)).collect();
+        let scheme = |step| Ok(self.first().scheme.resized(step));
+        let (stages, _) = Self::with_fractions(method, self.h, gammas, 1, first, scheme)?;
+        let stages = Arc::new(stages);
+        prepared.push((m, stages.clone()));
+        Ok(stages)
     }
 
     /// The scheme of the first sub-step (what does not depend on the sub-step size — bases, momenta,
