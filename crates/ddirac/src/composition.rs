@@ -40,6 +40,7 @@ pub enum Composition {
 }
 
 /// Kahan & Li (1997), s9odr6a, as printed in HLW V.3, eq. (3.11): γ₁ … γ₅ (γ₆ … γ₉ mirror them).
+#[allow(clippy::excessive_precision)] // the digits as published
 const KAHAN_LI_9: [f64; 5] = [
     0.392_161_444_007_314_139_279_250_56,
     0.332_599_136_789_359_438_599_748_64,
@@ -49,6 +50,7 @@ const KAHAN_LI_9: [f64; 5] = [
 ];
 
 /// Kahan & Li (1997), s17odr8a, as printed in HLW V.3, eq. (3.12): γ₁ … γ₉ (γ₁₀ … γ₁₇ mirror them).
+#[allow(clippy::excessive_precision)] // the digits as published
 const KAHAN_LI_17: [f64; 9] = [
     0.130_202_483_088_890_080_878_817_63,
     0.561_162_981_775_108_384_561_964_41,

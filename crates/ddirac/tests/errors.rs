@@ -196,15 +196,15 @@ fn newton_failures_are_errors_naming_the_step() {
     assert!(matches!(&e, Error::Newton { step: 0, iterations: 0, .. }), "{e:?}");
     assert!(e.to_string().contains("step 0 (t = 0)"), "{e}");
 
-    // A step of half an orbital period through periapsis: no nearby root.
+    // A step of half an orbital period through periapsis has no nearby root: it is taken as
+    // sub-steps instead (see issue_14_failed_steps_are_subdivided.rs), and the run completes.
     let tb = TwoBody::default();
     let problem =
         Problem::new(1.0, 10, vec![0.3, -0.2, 1.0, 0.0], InitialMomentum::Velocity(vec![0.1, 0.05, 0.0, 1.1]));
     for reduced in [true, false] {
         let method = Method { rule: Rule::Midpoint, reduced, ..Method::default() };
-        let e = run_err(&tb, &problem, &method);
-        assert!(matches!(&e, Error::Newton { step: 0, .. }), "reduced = {reduced}: {e:?}");
-        assert!(e.to_string().contains("step 0"), "{e}");
+        let summary = solve(&tb, &problem, &method, &OutputOptions::default()).unwrap().summary;
+        assert!(summary.newton.subdivided_steps > 0, "reduced = {reduced}: {:?}", summary.newton);
     }
 
     // A huge step for the pendulum: Newton fails, whichever way, without a panic.
