@@ -45,11 +45,15 @@ fn a_racing_azimuth_near_the_pole_is_reported_as_a_singular_chart_with_time_and_
         .unwrap_or_else(|| panic!("no singular_chart warning: {:?}", solution.summary.warnings));
     assert_eq!(warning.kind.name(), "singular_chart");
     let (k, t) = (warning.step.expect("a step"), warning.t.expect("a time"));
-    assert!(warning.message.contains("`phi` advanced by"), "{}", warning.message);
     assert!(warning.message.contains("near-singular here") && warning.message.contains("along `phi`"));
-    // The warning is about the step where φ races: its increment is above the limit, and θ is near 0.
+    // The warning is about the step where φ races (by more than the limit in one step), or whose
+    // energy jumped so that it was taken as sub-steps (issue 14); either way θ is near 0 there.
     let dphi = solution.q[k + 1][1] - solution.q[k][1];
-    assert!(dphi.abs() > MAX_ANGLE_STEP, "φ advanced {dphi} at step {k}");
+    if warning.message.contains("`phi` advanced by") {
+        assert!(dphi.abs() > MAX_ANGLE_STEP, "φ advanced {dphi} at step {k}");
+    } else {
+        assert!(warning.message.contains("sub-steps"), "{}", warning.message);
+    }
     assert!(solution.q[k][0].sin().abs() < 0.05, "θ_k = {}", solution.q[k][0]);
     assert!((t - k as f64 * 0.01).abs() < 1e-12);
 }

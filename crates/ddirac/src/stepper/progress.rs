@@ -216,11 +216,20 @@ impl<const N: usize> Progress<N> {
                         zs.clear();
                     }
                     let (k, t) = (self.k, self.k as f64 * context.h);
+                    // Where the chart degenerates, a smaller step only gets through: say so.
+                    let chart = singular_chart(context, self.config.base(), &taken.dq);
                     let record = &mut self.record;
                     record.newton.subdivided_steps += 1;
                     record.newton.max_subdivision = record.newton.max_subdivision.max(m);
                     let message = format!("a step failed ({failure}) and was taken as {m} sub-steps");
                     record.warnings.push(Warning::new(WarningKind::Subdivided, Some((k, t)), message));
+                    if let Some(cause) = chart {
+                        let message = format!(
+                            "{cause}: a step was taken as {m} sub-steps there; the trajectory cannot be trusted from \
+                             here (use coordinates regular here)"
+                        );
+                        record.warnings.push(Warning::new(WarningKind::SingularChart, Some((k, t)), message));
+                    }
                     return Ok(taken);
                 }
                 Err(Error::Newton { .. } | Error::Diverged { .. }) => m *= 2,
