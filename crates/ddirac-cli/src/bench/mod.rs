@@ -13,7 +13,8 @@
 //! - `charged-particle`: the generic engine against the hand-written step and Boris (paper §7.1,
 //!   left rule, reduced (+), h = 0.02) ([`charged_particle`]);
 //! - `work-precision`: error ‖q(T) − q_N‖ at T = 20 and time of the same three for N = 50 … 12800,
-//!   and their time ratios at equal error ([`work_precision`]);
+//!   and their time ratios at equal error ([`work_precision`]); then the compositions of orders 2 … 8
+//!   against DOP853 on three systems, with the work–precision figure ([`race`]);
 //! - `expression`: the double spherical pendulum's Lagrangian written as text against the Rust one
 //!   ([`expression`]);
 //! - `linearity`: time per step for 10³, 10⁴ and 10⁵ steps ([`linearity`]);
@@ -25,11 +26,14 @@
 //! place when complete.
 
 mod charged_particle;
+#[cfg(feature = "dop853")]
+mod dop853;
 mod ensemble;
 mod expression;
 mod harness;
 mod linearity;
 mod print;
+mod race;
 mod reduction;
 mod scaling;
 mod work_precision;
@@ -65,6 +69,9 @@ pub struct Options {
     /// Write every measurement as JSON to this file.
     #[arg(long, value_name = "PATH")]
     json: Option<PathBuf>,
+    /// Directory of the figures (`work-precision.png`, `.svg`).
+    #[arg(long, value_name = "DIR", default_value = "out/bench")]
+    figures: PathBuf,
 }
 
 /// A comparison group.
@@ -130,6 +137,8 @@ pub struct Settings {
     pub schedule: Schedule,
     /// Small step counts.
     pub quick: bool,
+    /// Where figures go.
+    pub figures: PathBuf,
 }
 
 /// Runs the selected groups, printing each table as it is measured, and writes the JSON file.
@@ -150,8 +159,11 @@ pub fn bench(options: &Options) -> Result<(), miette::Report> {
     }
     let rounds = options.rounds.map_or(if options.quick { 3 } else { 15 }, |r| r as usize);
     let batch_ms = options.batch_ms.unwrap_or(if options.quick { 2 } else { 20 });
-    let settings =
-        Settings { schedule: Schedule { rounds, batch: Duration::from_millis(batch_ms) }, quick: options.quick };
+    let settings = Settings {
+        schedule: Schedule { rounds, batch: Duration::from_millis(batch_ms) },
+        quick: options.quick,
+        figures: options.figures.clone(),
+    };
     println!(
         "ddirac bench{}: {rounds} round{} per comparison, batches of about {batch_ms} ms, one batch of each contender \
          per round in an order rotated every round",

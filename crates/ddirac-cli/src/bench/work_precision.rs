@@ -54,11 +54,16 @@ struct Report {
     duration: f64,
     rows: Vec<Row>,
     equal_error: Vec<EqualError>,
+    /// The compositions against DOP853 ([`super::race`]).
+    race: Vec<super::race::Race>,
 }
 
 /// Runs the group.
 pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
-    print::heading("work-precision", "charged particle (paper §7.1), T = 20, error against time");
+    print::heading(
+        "work-precision",
+        "charged particle (paper §7.1), T = 20, error against time; the engine's compiled closed-form step at every N",
+    );
     let steps: &[usize] = if settings.quick { &QUICK_STEPS } else { &STEPS };
     let system = ChargedParticle::default();
     println!(
@@ -92,12 +97,13 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         rows.push(Row { steps: n, step: problem.step, errors, comparison });
     }
     let equal_error = equal_error(&rows)?;
-    to_json(&Report { duration: T, rows, equal_error })
+    let race = super::race::run(settings, &settings.figures)?;
+    to_json(&Report { duration: T, rows, equal_error, race })
 }
 
 /// The position of `target` among decreasing `errors`: (i, s) with
 /// ln target = (1 − s) ln e_i + s ln e_{i+1}, 0 ≤ s ≤ 1.
-fn bracket(errors: &[f64], target: f64) -> Option<(usize, f64)> {
+pub(super) fn bracket(errors: &[f64], target: f64) -> Option<(usize, f64)> {
     let t = target.ln();
     errors.windows(2).enumerate().find_map(|(i, w)| {
         let (a, b) = (w[0].ln(), w[1].ln());
@@ -106,7 +112,7 @@ fn bracket(errors: &[f64], target: f64) -> Option<(usize, f64)> {
 }
 
 /// exp((1 − s) ln a + s ln b).
-fn between(a: f64, b: f64, s: f64) -> f64 {
+pub(super) fn between(a: f64, b: f64, s: f64) -> f64 {
     (a.ln() + s * (b.ln() - a.ln())).exp()
 }
 
