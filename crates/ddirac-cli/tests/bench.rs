@@ -69,6 +69,15 @@ fn quick_run_measures_every_group_and_writes_the_json_file() {
     for group in GROUPS {
         assert!(text.contains(&format!("== {group}:")), "no `{group}` table:\n{text}");
     }
+    // The race of the compositions (and DOP853 in a build with the `dop853` feature), with its figure.
+    assert!(text.contains("== work-precision: compositions against DOP853"), "{text}");
+    for system in ["double spherical pendulum", "Kepler", "charged particle (§7.1)"] {
+        assert!(text.contains(&format!("  {system}")), "no race on {system}:\n{text}");
+    }
+    for figure in ["work-precision.png", "work-precision.svg"] {
+        let path = dir.0.join("out/bench").join(figure);
+        assert!(std::fs::metadata(&path).map(|m| m.len() > 1000).unwrap_or(false), "{path:?}");
+    }
 
     // Every printed ratio: median, quartiles and extremes (and a target), all finite and positive.
     let ratios = printed_ratios(&text);

@@ -16,6 +16,7 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::path::Path;
 
+#[cfg(feature = "dop853")]
 use ddirac::mechanics::legendre;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, Kepler};
 use ddirac::{integrate, Composition, Differentiation, InitialMomentum, Method, Problem, Rule, System};
@@ -147,6 +148,8 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
     let panels = races.iter().map(panel).collect();
     let figure = Figure::new("work-precision", "Work–precision: compositions against DOP853", panels)
         .subtitle("error of q(T) against time per run (log–log); one line per method");
+    std::fs::create_dir_all(figures)
+        .map_err(|e| miette::miette!("cannot create the figures' directory `{}`: {e}", figures.display()))?;
     let written = plot::save(&figure, figures).map_err(|e| miette::miette!("{e}"))?;
     println!("  figure       {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     Ok(races)
