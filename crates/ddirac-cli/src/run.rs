@@ -215,6 +215,7 @@ fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddir
             | E::NotPeriodic { .. }
             | E::Undecided { .. }
             | E::OffPrimaryConstraint { .. }
+            | E::Undetermined { .. }
             | E::NoSymmetry
             | E::NotCompiled(_)
     );

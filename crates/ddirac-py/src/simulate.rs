@@ -348,6 +348,7 @@ fn summary_dict<'py>(
     m.set_item("energy_jump_threshold", method.energy_jump.threshold)?;
     m.set_item("order", method.composition.order())?;
     m.set_item("composition", method.composition.name())?;
+    m.set_item("stages", method.composition.coefficients().len())?;
     d.set_item("method", m)?;
     d.set_item("steps", s.steps)?;
     d.set_item("step", s.step)?;

@@ -143,6 +143,20 @@ pub enum Error {
     /// A reduced run of a system with no group coordinates.
     #[error("reduction needs at least one group coordinate; the system has none")]
     NoSymmetry,
+    /// The step equations do not determine the next configuration: their Jacobian (D1D2 L_d, or the
+    /// reduced l̂'s mixed block) is singular at the first step, as for a Lagrangian that vanishes or
+    /// does not depend on the velocity of some coordinate.
+    #[error(
+        "the step equations do not determine the motion: their Jacobian D1D2 L_d has rank {rank} of {coordinates} \
+         at the first step (a Lagrangian that vanishes, or does not depend on the velocity of some coordinate, \
+         leaves the motion undetermined)"
+    )]
+    Undetermined {
+        /// The rank of the Jacobian at the first step.
+        rank: usize,
+        /// Number of coordinates.
+        coordinates: usize,
+    },
     /// Compiled derivatives were required (`method.derivatives = "compiled"`) but could not be built.
     #[error("compiled derivatives are not available: {0}")]
     NotCompiled(#[source] crate::compiled::CompileError),

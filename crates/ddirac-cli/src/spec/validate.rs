@@ -84,6 +84,7 @@ impl Spans {
                 return self.reduced.clone().map(|s| (s, "reduction asked here"))
             }
             E::OffPrimaryConstraint { .. } => return self.momentum.clone().map(|s| (s, "off the primary constraint")),
+            E::Undetermined { .. } => return self.system.clone().map(|s| (s, "this system")),
             E::Newton { .. } | E::Diverged { .. } | E::EnergyJump { .. } => {
                 return self.time.clone().map(|s| (s, "this time grid"))
             }
@@ -146,6 +147,12 @@ impl Spans {
             ddirac::Error::Undecided { .. } => Some(
                 "L_d is not finite near the initial data, so the hypothesis could not be tested: check the initial \
                  data and where the Lagrangian is defined; `check_invariance = false` reduces anyway, with a warning"
+                    .into(),
+            ),
+            ddirac::Error::Undetermined { .. } => Some(
+                "every velocity must enter the Lagrangian so that the step equations fix the next configuration \
+                 (for a Lagrangian linear in the velocities, as point vortices', their coefficients must make \
+                 D1D2 L_d invertible): check its terms and parameters"
                     .into(),
             ),
             ddirac::Error::OffPrimaryConstraint { .. } => Some(

@@ -208,6 +208,10 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Unreduced(stages), path)
         };
+        let rank = equipped!(&schemes, st => st.first_step_rank(&first));
+        if rank < N {
+            return Err(Error::Undetermined { rank, coordinates: N });
+        }
         let fresh_kept = match derivative_path {
             DerivativePath::Compiled { residual, jacobian, .. } => newton::KeptJacobian::with_relative_cost(
                 newton::KeptJacobian::<N>::compiled_relative_cost(residual, jacobian),

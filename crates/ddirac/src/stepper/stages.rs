@@ -9,6 +9,10 @@ use crate::diagnostics::DerivativePath;
 use crate::scheme::Scheme;
 use crate::{Error, Input, Method, Rule};
 
+/// Pivots below this fraction of the Jacobian's largest entry count as zero in the test that the
+/// step equations determine the motion ([`Stages::first_step_rank`]).
+const RANK_TOLERANCE: f64 = 1e-13;
+
 /// A failed step is taken again as m = 2, 4, … equal sub-steps, up to this many.
 pub const MAX_SUBDIVISION: usize = 64;
 
@@ -96,6 +100,21 @@ impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
     #[inline]
     pub(super) fn first(&self) -> &Equipped<Sc, N> {
         &self.distinct[0]
+    }
+
+    /// The rank of the first sub-step's Jacobian at the `first` step (N where it is not finite: Newton's
+    /// method reports that case).
+    pub(super) fn first_step_rank(&self, first: &FirstStep<N>) -> usize {
+        let e = self.first();
+        let dq = first.dq.map(|d| self.gammas[0] * d);
+        let base = e.scheme.base(first.q.base());
+        let z = e.scheme.unknowns(&dq);
+        match e.derivatives.first_or_mixed(&e.scheme, &base, &z, true) {
+            (_, Some(jacobian)) if jacobian.iter().all(|x| x.is_finite()) => {
+                crate::linalg::Factorization::new(jacobian, RANK_TOLERANCE).map_or(0, |lu| lu.rank)
+            }
+            _ => N,
+        }
     }
 
     /// Whether every sub-step's derivatives serve other problems unchanged.
