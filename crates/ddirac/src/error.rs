@@ -148,8 +148,8 @@ pub enum Error {
     /// does not depend on the velocity of some coordinate.
     #[error(
         "the step equations do not determine the motion: their Jacobian D1D2 L_d has rank {rank} of {coordinates} \
-         at the first step (a Lagrangian that vanishes, or does not depend on the velocity of some coordinate, \
-         leaves the motion undetermined)"
+         at the first step (a Lagrangian that vanishes, or on which some coordinate has no effect, or the reduction \
+         of one that is not invariant leaves the motion undetermined)"
     )]
     Undetermined {
         /// The rank of the Jacobian at the first step.

@@ -285,10 +285,11 @@ fn point_vortices_are_refused_by_reduction_and_run_unreduced() {
     assert!(e.to_string().contains("`X`"), "{e}");
 
     // Without the invariance check the reduced step must still fail cleanly (its μ-equation has no
-    // unknown, so the Newton matrix is singular), not panic or return a trajectory.
+    // unknown, so the step's Jacobian is singular: the motion is undetermined), not panic or return a
+    // trajectory.
     let unchecked = Method { check_invariance: false, ..method };
     let e = run_err(&vortices, &problem, &unchecked);
-    assert!(matches!(&e, Error::Newton { step: 0, .. }), "{e:?}");
+    assert!(matches!(&e, Error::Undetermined { rank: 2, coordinates: 4 }), "{e:?}");
 
     // Unreduced, the midpoint rule is the implicit midpoint rule for the vortex equations; it
     // conserves the quadratic invariant |r1 − r2|² and hence H.
