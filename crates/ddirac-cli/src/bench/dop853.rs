@@ -1,5 +1,6 @@
 //! DOP853 (the `ode_solvers` crate, feature `dop853`) on the Euler–Lagrange vector field of a
-//! system, the peer of the work-precision race ([`super::race`]).
+//! system, the peer of the work-precision race ([`super::race`]). Without the feature, [`integrate`]
+//! answers `None` (`bench/mod.rs` declares that stand-in).
 
 use ddirac::mechanics::euler_lagrange::EulerLagrange;
 use ddirac::mechanics::legendre;
@@ -15,11 +16,25 @@ impl<S: System<N>, const N: usize> ode_solvers::System<f64, DVector<f64>> for Fi
     }
 }
 
+/// Whether this build has the peer.
+pub const AVAILABLE: bool = true;
+
 /// q(T) from (q0, p0) with relative and absolute tolerance `tolerance`, and with `energy` the largest
-/// |H − H₀|/|H₀| over the accepted steps (NaN without). Hairer's parameters of step-size control
-/// (safety 0.9, factors 1/3 … 6), at most 10⁷ steps.
+/// |H − H₀|/|H₀| over the accepted steps (NaN without); the field's derivatives compiled (traced at
+/// the initial data) as the engine's are. Hairer's parameters of step-size control (safety 0.9,
+/// factors 1/3 … 6), at most 10⁷ steps. Always `Some` in this build.
 pub fn integrate<S: System<N>, const N: usize>(
-    field: &EulerLagrange<'_, S, N>,
+    system: &S,
+    q0: &[f64; N],
+    p0: &[f64; N],
+    duration: f64,
+    tolerance: f64,
+    energy: bool,
+) -> Option<Result<(Vec<f64>, f64), miette::Report>> {
+    Some(solve(system, q0, p0, duration, tolerance, energy))
+}
+
+fn solve<S: System<N>, const N: usize>(
     system: &S,
     q0: &[f64; N],
     p0: &[f64; N],
@@ -28,11 +43,12 @@ pub fn integrate<S: System<N>, const N: usize>(
     energy: bool,
 ) -> Result<(Vec<f64>, f64), miette::Report> {
     let v0 = legendre::velocity(system, q0, p0).0;
+    let field = EulerLagrange::new(system, true, q0, &v0);
     let y0 = DVector::from_iterator(2 * N, q0.iter().chain(&v0).copied());
     // Every accepted step is kept (the last ends at T; the dense output's interpolation is not needed).
     let output = OutputType::Sparse;
     let mut solver = Dop853::from_param(
-        Field(field),
+        Field(&field),
         0.0,
         duration,
         duration,

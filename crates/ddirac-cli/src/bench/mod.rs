@@ -28,6 +28,24 @@
 mod charged_particle;
 #[cfg(feature = "dop853")]
 mod dop853;
+/// Without the `dop853` feature the race has no peer.
+#[cfg(not(feature = "dop853"))]
+mod dop853 {
+    /// Whether this build has the peer.
+    pub const AVAILABLE: bool = false;
+
+    /// `None`: DOP853 is not in this build.
+    pub fn integrate<S: ddirac::System<N>, const N: usize>(
+        _system: &S,
+        _q0: &[f64; N],
+        _p0: &[f64; N],
+        _duration: f64,
+        _tolerance: f64,
+        _energy: bool,
+    ) -> Option<Result<(Vec<f64>, f64), miette::Report>> {
+        None
+    }
+}
 mod ensemble;
 mod expression;
 mod harness;

@@ -16,7 +16,6 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::path::Path;
 
-#[cfg(feature = "dop853")]
 use ddirac::mechanics::legendre;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, Kepler};
 use ddirac::{integrate, Composition, Differentiation, InitialMomentum, Method, Problem, Rule, System};
@@ -24,7 +23,7 @@ use serde::Serialize;
 
 use super::harness::{compare, Contender};
 use super::work_precision::{between, bracket};
-use super::{failed, print, Settings, LAST_ROW_ONLY};
+use super::{dop853, failed, print, Settings, LAST_ROW_ONLY};
 use crate::plot::{self, Figure, Panel, Scale, Series};
 
 /// One point of a method's curve: its parameter (N, or DOP853's tolerance), error and time per run.
@@ -87,7 +86,7 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
         "work-precision: compositions against DOP853",
         "error ‖q(T) − q_ref‖ against time per run, side by side",
     );
-    if !cfg!(feature = "dop853") {
+    if !dop853::AVAILABLE {
         println!("  DOP853 is not in this build (`cargo build --release -p ddirac-cli --features dop853`): compositions only");
     }
     let quick = settings.quick;
@@ -200,27 +199,16 @@ fn race<S: System<N>, const N: usize>(settings: &Settings, case: Case<'_, S, N>)
         };
         contenders.push(Contender::new(format!("order {order}, N = {}", problem.steps), 1, run));
     }
-    #[cfg(feature = "dop853")]
-    {
-        let tolerances: &[f64] = if settings.quick { &QUICK_TOLERANCES } else { &TOLERANCES };
-        for &tolerance in tolerances {
-            let field =
-                ddirac::mechanics::euler_lagrange::EulerLagrange::new(system, true, &q0, &velocity(system, &q0, &p0));
-            let (q, _) = super::dop853::integrate(&field, system, &q0, &p0, duration, tolerance, false)?;
-            labels.push(("DOP853".to_owned(), tolerance, distance(&q, &q_ref)));
-            let run = move || {
-                let field = ddirac::mechanics::euler_lagrange::EulerLagrange::new(
-                    system,
-                    true,
-                    &q0,
-                    &velocity(system, &q0, &p0),
-                );
-                black_box(super::dop853::integrate(&field, system, &q0, &p0, duration, tolerance, false)).map(|_| ())
-            };
-            contenders.push(Contender::new(format!("DOP853, tolerance {tolerance:e}"), 1, run));
-        }
+    let tolerances: &[f64] = if settings.quick { &QUICK_TOLERANCES } else { &TOLERANCES };
+    for &tolerance in tolerances {
+        let Some(first) = dop853::integrate(system, &q0, &p0, duration, tolerance, false) else { break };
+        labels.push(("DOP853".to_owned(), tolerance, distance(&first?.0, &q_ref)));
+        let run = move || match dop853::integrate(system, &q0, &p0, duration, tolerance, false) {
+            Some(result) => black_box(result).map(|_| ()),
+            None => Err(miette::miette!("DOP853 is not in this build")),
+        };
+        contenders.push(Contender::new(format!("DOP853, tolerance {tolerance:e}"), 1, run));
     }
-    let _ = (&QUICK_TOLERANCES, &TOLERANCES);
     let comparison = compare(name, settings.schedule, contenders, &[])?;
     let mut methods: BTreeMap<String, Vec<Point>> = BTreeMap::new();
     for ((method, parameter, error), timing) in labels.into_iter().zip(&comparison.timings) {
@@ -238,12 +226,6 @@ fn race<S: System<N>, const N: usize>(settings: &Settings, case: Case<'_, S, N>)
     Ok(Race { system: name, duration, reference, methods, equal_error, long_run })
 }
 
-/// v0 from p0 by the inverse Legendre transform.
-#[cfg(feature = "dop853")]
-fn velocity<S: System<N>, const N: usize>(system: &S, q0: &[f64; N], p0: &[f64; N]) -> [f64; N] {
-    legendre::velocity(system, q0, p0).0
-}
-
 /// q(T) of the reference run: DOP853 at tolerance 1e-14 when the build has it, checked against the
 /// order-8 composition at twice its finest N; that composition otherwise.
 fn reference_run<S: System<N>, const N: usize>(
@@ -259,20 +241,15 @@ fn reference_run<S: System<N>, const N: usize>(
     let composed = integrate(system, &problem(n), &composed(8), &LAST_ROW_ONLY, &mut |_| Ok(()))
         .map_err(|e| failed(&what, e))?
         .final_q;
-    #[cfg(feature = "dop853")]
-    {
-        let field = ddirac::mechanics::euler_lagrange::EulerLagrange::new(system, true, q0, &velocity(system, q0, p0));
-        let (q, _) = super::dop853::integrate(&field, system, q0, p0, duration, 1e-14, false)?;
-        let agree = distance(&q, &composed.iter().copied().map(Some).collect::<Vec<_>>());
-        return Ok((
-            format!("DOP853 at tolerance 1e-14 (the order-8 composition with N = {n} differs by {agree:.1e})"),
-            q,
-        ));
-    }
-    #[allow(unreachable_code)]
-    {
-        let _ = (q0, p0, duration);
-        Ok((format!("the order-8 composition with N = {n}"), composed))
+    match dop853::integrate(system, q0, p0, duration, 1e-14, false) {
+        Some(result) => {
+            let (q, _) = result?;
+            let agree = distance(&q, &composed.iter().copied().map(Some).collect::<Vec<_>>());
+            let name =
+                format!("DOP853 at tolerance 1e-14 (the order-8 composition with N = {n} differs by {agree:.1e})");
+            Ok((name, q))
+        }
+        None => Ok((format!("the order-8 composition with N = {n}"), composed)),
     }
 }
 
@@ -305,8 +282,8 @@ fn equal_error(methods: &BTreeMap<String, Vec<Point>>) -> Vec<EqualError> {
 }
 
 /// Over ten times the duration: DOP853 at 1e-8 and the composition of order 8 with the step count
-/// of equal cost (from the timed runs), each with its largest relative energy error.
-#[allow(unused_variables)]
+/// of equal cost (from the timed runs), each with its largest relative energy error; `None` without
+/// the peer.
 fn long_run<S: System<N>, const N: usize>(
     system: &S,
     q0: &[f64; N],
@@ -314,44 +291,39 @@ fn long_run<S: System<N>, const N: usize>(
     duration: f64,
     methods: &BTreeMap<String, Vec<Point>>,
 ) -> Result<Option<LongRun>, miette::Report> {
-    #[cfg(feature = "dop853")]
-    {
-        let (tolerance, long) = (1e-8, 10.0 * duration);
-        let field = ddirac::mechanics::euler_lagrange::EulerLagrange::new(system, true, q0, &velocity(system, q0, p0));
-        let started = std::time::Instant::now();
-        let (_, dop853_energy_error) = super::dop853::integrate(&field, system, q0, p0, long, tolerance, true)?;
-        let dop853_seconds = started.elapsed().as_secs_f64();
-        // The order-8 composition's cost per step, from its fastest timed run.
-        let Some(points) = methods.get("order 8") else { return Ok(None) };
-        let per_step = points.iter().map(|p| p.seconds / p.parameter).fold(f64::INFINITY, f64::min);
-        let n = ((dop853_seconds / per_step) as usize).max(10);
-        let problem = Problem::new(long / n as f64, n, q0.to_vec(), InitialMomentum::Momentum(p0.to_vec()));
-        let h0 = legendre::hamiltonian(system, q0, p0);
-        let mut largest: f64 = 0.0;
-        let started = std::time::Instant::now();
-        let every = ddirac::OutputOptions { every: 1, wrap_angles: false };
-        integrate(system, &problem, &composed(8), &every, &mut |row| {
-            largest = largest.max(((row.energy - h0) / h0).abs());
-            Ok(())
-        })
-        .map_err(|e| failed("the long run of order 8", e))?;
-        let composition_seconds = started.elapsed().as_secs_f64();
-        println!(
-            "    T = {long}: DOP853 (tolerance {tolerance:e}) {dop853_seconds:.3} s, max |ΔH/H₀| {dop853_energy_error:.2e}; \
-             order 8 with N = {n}: {composition_seconds:.3} s, max |ΔH/H₀| {largest:.2e}"
-        );
-        return Ok(Some(LongRun {
-            duration: long,
-            composition: format!("order 8, N = {n}"),
-            composition_seconds,
-            composition_energy_error: largest,
-            dop853_tolerance: tolerance,
-            dop853_seconds,
-            dop853_energy_error,
-        }));
-    }
-    #[allow(unreachable_code)]
-    Ok(None)
+    let (tolerance, long) = (1e-8, 10.0 * duration);
+    let started = std::time::Instant::now();
+    let Some(result) = dop853::integrate(system, q0, p0, long, tolerance, true) else { return Ok(None) };
+    let (_, dop853_energy_error) = result?;
+    let dop853_seconds = started.elapsed().as_secs_f64();
+    // The order-8 composition's cost per step, from its fastest timed run.
+    let Some(points) = methods.get("order 8") else { return Ok(None) };
+    let per_step = points.iter().map(|p| p.seconds / p.parameter).fold(f64::INFINITY, f64::min);
+    let n = ((dop853_seconds / per_step) as usize).max(10);
+    let problem = Problem::new(long / n as f64, n, q0.to_vec(), InitialMomentum::Momentum(p0.to_vec()));
+    let h0 = legendre::hamiltonian(system, q0, p0);
+    let mut largest: f64 = 0.0;
+    let started = std::time::Instant::now();
+    let every = ddirac::OutputOptions { every: 1, wrap_angles: false };
+    integrate(system, &problem, &composed(8), &every, &mut |row| {
+        largest = largest.max(((row.energy - h0) / h0).abs());
+        Ok(())
+    })
+    .map_err(|e| failed("the long run of order 8", e))?;
+    let composition_seconds = started.elapsed().as_secs_f64();
+    println!(
+        "    T = {long}: DOP853 (tolerance {tolerance:e}) {dop853_seconds:.3} s, max |ΔH/H₀| {dop853_energy_error:.2e}; \
+         order 8 with N = {n}: {composition_seconds:.3} s, max |ΔH/H₀| {largest:.2e}"
+    );
+    Ok(Some(LongRun {
+        duration: long,
+        composition: format!("order 8, N = {n}"),
+        composition_seconds,
+        composition_energy_error: largest,
+        dop853_tolerance: tolerance,
+        dop853_seconds,
+        dop853_energy_error,
+    }))
 }
 
 /// The log–log panel of one race.
