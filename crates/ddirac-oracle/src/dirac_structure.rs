@@ -213,7 +213,7 @@ impl GeneralForm {
 /// (D1 L_d, D2 L_d) at (x0, 0, x1, g1 + h_d^0(x0, x1)) from the partials of l₊ at (x0, x1, g1), as
 /// printed in `lemma:partialderivativesld`.
 pub fn ld_partials_from_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     x1: &[f64],
     g1: &[f64],
@@ -227,7 +227,7 @@ pub fn ld_partials_from_plus<S: System<N>, const N: usize>(
 /// (D1 L_d, D2 L_d) at (x0, g0 + h_d^0(x1, x0), x1, 0) from the partials of l₋ at (x0, g0, x1), as
 /// printed in `lemma:partialderivativesldminus`.
 pub fn ld_partials_from_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     g0: &[f64],
     x1: &[f64],
@@ -240,7 +240,7 @@ pub fn ld_partials_from_minus<S: System<N>, const N: usize>(
 
 /// [D̂⁺L_d](x0, x1, g1) (`prop:reduceddiracdifferentiallocal`).
 pub fn dirac_differential_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     x1: &[f64],
     g1: &[f64],
@@ -263,7 +263,7 @@ pub fn dirac_differential_plus<S: System<N>, const N: usize>(
 
 /// [D̂⁻L_d](x0, g0, x1) (`prop:reduceddiracdifferentiallocalminus`).
 pub fn dirac_differential_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     g0: &[f64],
     x1: &[f64],
@@ -287,7 +287,7 @@ pub fn dirac_differential_minus<S: System<N>, const N: usize>(
 /// max |\[Ω̂♭_{d+}\](X) − \[D̂⁺L_d\](x_k, x_k^+, g_k^+)| over all components: zero when
 /// (X, [D̂⁺L_d](x_k, x_k^+, g_k^+)) ∈ [D̂^{d+}].
 pub fn dirac_residual_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     step: &ReducedStepPlus,
     x_plus: &[f64],
     g_plus: &[f64],
@@ -300,7 +300,7 @@ pub fn dirac_residual_plus<S: System<N>, const N: usize>(
 /// max |\[Ω̂♭_{d−}\](X) − \[D̂⁻L_d\](x_{k+1}^−, g_{k+1}^−, x_{k+1})| over all components: zero when
 /// (X, [D̂⁻L_d](x_{k+1}^−, g_{k+1}^−, x_{k+1})) ∈ [D̂^{d−}].
 pub fn dirac_residual_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     step: &ReducedStepMinus,
     x_minus: &[f64],
     g_minus: &[f64],
@@ -322,7 +322,7 @@ pub fn dirac_residual_minus<S: System<N>, const N: usize>(
 /// g_k^+ + h_{d,Q}(x_k, 0) = g_{k+1} − h_{d,Σ}(x_{k+1})
 /// ```
 pub fn general_form_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     step: &ReducedStepPlus,
     x_plus: &[f64],
     g_plus: &[f64],
@@ -359,7 +359,7 @@ pub fn general_form_plus<S: System<N>, const N: usize>(
 /// g_{k+1}^− + h_{d,Q}(x_{k+1}, 0) = g_k − h_{d,Σ}(x_k)
 /// ```
 pub fn general_form_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     step: &ReducedStepMinus,
     x_minus: &[f64],
     g_minus: &[f64],
@@ -386,19 +386,19 @@ pub fn general_form_minus<S: System<N>, const N: usize>(
 }
 
 /// ⟨μ, h_d^0(·, 0)⟩ ∈ Σ*.
-fn pair_h0_first<S>(reduction: &ReducedLagrangian<'_, S>, mu: &[f64]) -> Vec<f64> {
+fn pair_h0_first<S>(reduction: &ReducedLagrangian<S>, mu: &[f64]) -> Vec<f64> {
     let zero = vec![0.0; reduction.split.n_x()];
     pullback(mu, reduction.split.n_x(), |x| reduction.connection.h_d0(x, &zero))
 }
 
 /// ⟨μ, h_d^0(0, ·)⟩ ∈ Σ*.
-fn pair_h0_second<S>(reduction: &ReducedLagrangian<'_, S>, mu: &[f64]) -> Vec<f64> {
+fn pair_h0_second<S>(reduction: &ReducedLagrangian<S>, mu: &[f64]) -> Vec<f64> {
     let zero = vec![0.0; reduction.split.n_x()];
     pullback(mu, reduction.split.n_x(), |x| reduction.connection.h_d0(&zero, x))
 }
 
 /// ⟨μ, h_d((0, ·), 0)⟩ ∈ 𝔤*.
-fn pair_h_group<S>(reduction: &ReducedLagrangian<'_, S>, mu: &[f64]) -> Vec<f64> {
+fn pair_h_group<S>(reduction: &ReducedLagrangian<S>, mu: &[f64]) -> Vec<f64> {
     let zero = vec![0.0; reduction.split.n_x()];
     pullback(mu, reduction.split.n_g(), |g| reduction.connection.h_d((&zero, g), &zero))
 }

@@ -164,7 +164,7 @@ impl<const N: usize> MinusCurve<N> {
 /// assert!((e - (0.05 + 0.1)).abs() < 1e-15);
 /// ```
 pub fn energy_plus<S, D, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     q0: &[D; N],
     q0_plus: &[D; N],
     q1: &[D; N],
@@ -180,7 +180,7 @@ where
 /// E_{d−}(q1^−, q1, p0, q0) = L_d(q1^−, q1) + s ⟨p0, q0 − q1^−⟩ (eq:Edminus), s = +1 as printed,
 /// −1 corrected; generic over the scalar.
 pub fn energy_minus<S, D, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     q1_minus: &[D; N],
     q1: &[D; N],
     p0: &[D; N],
@@ -197,7 +197,7 @@ where
 /// e_{d+}(x0, x0^+, g0^+, q1, w1, μ1) (lemma:reducedactionlocal), with `plus` = (x0^+, g0^+) and
 /// q1 = (x1, g1) relative to g0; generic over the scalar.
 pub fn reduced_energy_plus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[D],
     plus: (&[D], &[D]),
     q1: (&[D], &[D]),
@@ -221,7 +221,7 @@ where
 /// to g1; generic over the scalar.
 #[allow(clippy::too_many_arguments)]
 pub fn reduced_energy_minus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     minus: (&[D], &[D]),
     x1: &[D],
     w0: &[D],
@@ -243,7 +243,7 @@ where
 
 /// S⁺ along a curve (eq:lagrangepontryaginaction).
 pub fn action_plus<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     curve: &PlusCurve<N>,
 ) -> Result<f64, Error> {
     let steps = curve.steps()?;
@@ -252,7 +252,7 @@ pub fn action_plus<S: System<N>, const N: usize>(
 
 /// S⁻ along a curve (eq:lagrangepontryaginactionminus), with the pairing sign chosen by `signs`.
 pub fn action_minus<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<f64, Error> {
@@ -262,7 +262,7 @@ pub fn action_minus<S: System<N>, const N: usize>(
 
 /// Σ_k e_{d+} along a trivialized curve (eq:reducedlagrangepontryaginprinciple).
 pub fn reduced_action_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     curve: &PlusCurve<N>,
 ) -> Result<f64, Error> {
     let steps = curve.steps()?;
@@ -271,7 +271,7 @@ pub fn reduced_action_plus<S: System<N>, const N: usize>(
 
 /// Σ_k e_{d−} along a trivialized curve (eq:reducedlagrangepontryaginprincipleminus).
 pub fn reduced_action_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<f64, Error> {
@@ -281,7 +281,7 @@ pub fn reduced_action_minus<S: System<N>, const N: usize>(
 
 /// The gradient of S⁺ with respect to the interior q_k, every q_k^+ and every p_{k+1}.
 pub fn action_plus_gradient<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     curve: &PlusCurve<N>,
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
@@ -291,7 +291,7 @@ pub fn action_plus_gradient<S: System<N>, const N: usize>(
 
 /// The gradient of S⁻ with respect to the interior q_k, every q_{k+1}^− and every p_k.
 pub fn action_minus_gradient<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<ActionGradient<N>, Error> {
@@ -303,7 +303,7 @@ pub fn action_minus_gradient<S: System<N>, const N: usize>(
 /// The gradient of Σ e_{d+} along a trivialized curve with respect to the interior q̂_k = (x_k, g_k),
 /// every (x_k^+, g_k^+) and every (w_{k+1}, μ_{k+1}).
 pub fn reduced_action_plus_gradient<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     curve: &PlusCurve<N>,
 ) -> Result<ActionGradient<N>, Error> {
     let steps = curve.steps()?;
@@ -314,7 +314,7 @@ pub fn reduced_action_plus_gradient<S: System<N>, const N: usize>(
 /// The gradient of Σ e_{d−} along a trivialized curve with respect to the interior q̂_k, every
 /// (x_{k+1}^−, g_{k+1}^−) and every (w_k, μ_k).
 pub fn reduced_action_minus_gradient<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     curve: &MinusCurve<N>,
     signs: Signs,
 ) -> Result<ActionGradient<N>, Error> {
@@ -371,7 +371,7 @@ fn assemble<const N: usize>(
 /// e_{d+} on packed blocks: q0 = (x0, g0), plus = (x0^+, g0^+), q1 = (x1, g1) (absolute; made relative
 /// to g0 here) and wm1 = (w1, μ1).
 fn e_plus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     q0: &[D; N],
     plus: &[D; N],
     q1: &[D; N],
@@ -397,7 +397,7 @@ where
 /// e_{d−} on packed blocks: minus = (x1^−, g1^−), q1 = (x1, g1), wm0 = (w0, μ0) and q0 = (x0, g0)
 /// (absolute; made relative to g1 here).
 fn e_minus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     minus: &[D; N],
     q1: &[D; N],
     wm0: &[D; N],
@@ -423,7 +423,7 @@ where
 }
 
 /// (K (u − v))_j with u, v at the shape positions of packed blocks: h_d((v, 0), u)_j.
-fn k_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, j: usize, u: &[D; N], v: &[D; N]) -> D {
+fn k_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<S>, j: usize, u: &[D; N], v: &[D; N]) -> D {
     reduction
         .split
         .shape
@@ -433,7 +433,7 @@ fn k_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, j
 }
 
 /// (Kᵀ μ)_i with μ at the group positions of a packed block.
-fn kt_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, i: usize, packed: &[D; N]) -> D {
+fn kt_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<S>, i: usize, packed: &[D; N]) -> D {
     reduction
         .split
         .group
@@ -443,14 +443,14 @@ fn kt_times<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, 
 }
 
 /// The shape entries of a packed block, with zeros at the group positions.
-fn shape_only<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<'_, S>, packed: &[D; N]) -> [D; N] {
+fn shape_only<S, D: Scalar, const N: usize>(reduction: &ReducedLagrangian<S>, packed: &[D; N]) -> [D; N] {
     let mut out = [D::from(0.0); N];
     reduction.split.shape.iter().for_each(|&si| out[si] = packed[si]);
     out
 }
 
 /// (x0 at the shape positions, γ = g^+ at the group positions).
-fn x0_gamma<S, D: Copy, const N: usize>(reduction: &ReducedLagrangian<'_, S>, x0: &[D; N], plus: &[D; N]) -> [D; N] {
+fn x0_gamma<S, D: Copy, const N: usize>(reduction: &ReducedLagrangian<S>, x0: &[D; N], plus: &[D; N]) -> [D; N] {
     let mut out = *x0;
     reduction.split.group.iter().for_each(|&gj| out[gj] = plus[gj]);
     out

@@ -42,7 +42,7 @@ pub struct ReducedPartials {
 /// assert!((l.value - 0.2).abs() < 1e-15 && (l.x1[2] - 1.0).abs() < 1e-15 && (l.gamma[0] - 1.0).abs() < 1e-15);
 /// ```
 pub fn partials_plus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     x1: &[f64],
     gamma: &[f64],
@@ -55,7 +55,7 @@ pub fn partials_plus<S: System<N>, const N: usize>(
 
 /// l₋ and its partials at (x0, γ, x1).
 pub fn partials_minus<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x0: &[f64],
     gamma: &[f64],
     x1: &[f64],
@@ -68,7 +68,7 @@ pub fn partials_minus<S: System<N>, const N: usize>(
 
 /// (D1 L_d, D2 L_d)(q0, q1) of the unreduced L_d ([`ddirac::DiscreteLagrangian::derivatives`]).
 pub fn ld_partials<S: System<N>, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     q0: &SplitVector,
     q1: &SplitVector,
 ) -> Result<(SplitVector, SplitVector), Error> {
@@ -90,7 +90,7 @@ pub fn ld_partials<S: System<N>, const N: usize>(
 /// l₊ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·); the
 /// group entries of b are not read.
 pub(crate) fn l_plus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     a: &[D; N],
     b: &[D; N],
 ) -> Result<D, Error>
@@ -105,7 +105,7 @@ where
 /// l₋ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·); the
 /// group entries of b are not read.
 pub(crate) fn l_minus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     a: &[D; N],
     b: &[D; N],
 ) -> Result<D, Error>
@@ -119,7 +119,7 @@ where
 
 /// A shape vector and a group vector at the coordinates' positions (missing entries `zero`).
 pub(crate) fn pack<S, D: Copy, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     x: &[D],
     g: &[D],
     zero: D,
@@ -131,7 +131,7 @@ pub(crate) fn pack<S, D: Copy, const N: usize>(
 }
 
 /// Checks that x0 and x1 have one entry per shape coordinate and γ one per group coordinate.
-fn check_sizes<S>(reduction: &ReducedLagrangian<'_, S>, x0: &[f64], x1: &[f64], gamma: &[f64]) -> Result<(), Error> {
+fn check_sizes<S>(reduction: &ReducedLagrangian<S>, x0: &[f64], x1: &[f64], gamma: &[f64]) -> Result<(), Error> {
     let (n_x, n_g) = (reduction.split.n_x(), reduction.split.n_g());
     for (what, found, expected) in [("x0", x0.len(), n_x), ("x1", x1.len(), n_x), ("gamma", gamma.len(), n_g)] {
         if found != expected {
@@ -142,7 +142,7 @@ fn check_sizes<S>(reduction: &ReducedLagrangian<'_, S>, x0: &[f64], x1: &[f64], 
 }
 
 fn unpack_partials<S, const N: usize>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     (value, [da, db]): (f64, [[f64; N]; 2]),
 ) -> ReducedPartials {
     let split = &reduction.split;

@@ -90,7 +90,7 @@ fn step_minus(k: &[Vec<f64>], a: &Point, b: &Point) -> (ReducedStepMinus, Vec<f6
 }
 
 /// Checks every step of a (+) run: membership in [D̂^{d+}] and eq:geometricequations.
-fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, k: &[Vec<f64>], points: &[Point]) -> (f64, f64) {
+fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<S>, k: &[Vec<f64>], points: &[Point]) -> (f64, f64) {
     let scale = scale_of(points);
     let (mut dirac, mut general) = (0.0f64, 0.0f64);
     for pair in points.windows(2) {
@@ -104,7 +104,7 @@ fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, k: &[Vec<f64>]
 /// Checks every step of a (−) run: membership in [D̂^{d−}], the corrected general form, and the
 /// smallest residual of the printed general form over all steps relative to that step's momenta.
 fn check_minus<S: System<4>>(
-    reduction: &ReducedLagrangian<'_, S>,
+    reduction: &ReducedLagrangian<S>,
     k: &[Vec<f64>],
     points: &[Point],
 ) -> (f64, f64, f64) {
@@ -176,7 +176,7 @@ fn two_body_minus_run_satisfies_the_corrected_equations_only() {
     assert!(printed > 0.5, "the printed eq:geometricequationsminus must fail on every step");
 }
 
-fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> ReducedLagrangian<'a, TwoBody> {
+fn two_body_reduction<'a>(system: &'a TwoBody, k: &[Vec<f64>]) -> ReducedLagrangian<&'a TwoBody> {
     ReducedLagrangian::new(system, Rule::Trapezoid, 0.1, Connection::new(k).unwrap()).unwrap()
 }
 

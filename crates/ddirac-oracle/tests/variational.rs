@@ -32,7 +32,7 @@ fn relative<const N: usize>(gradient: &ActionGradient<N>) -> f64 {
 /// S⁺ is stationary on the trajectory, not on a perturbed one, and equals Σ L_d(q_k, q_{k+1}), both
 /// evaluated here and as reported by the integrator (in its re-centred charts). Returns the relative
 /// gradient.
-fn check_plus_action<S: System<4>>(ld: &ddirac::DiscreteLagrangian<'_, S>, solution: &Solution) -> f64 {
+fn check_plus_action<S: System<4>>(ld: &ddirac::DiscreteLagrangian<S>, solution: &Solution) -> f64 {
     let curve = PlusCurve::<4>::from_trajectory(&solution.q, &solution.p).unwrap();
     let stationary = relative(&action_plus_gradient(ld, &curve).unwrap());
     assert!(stationary < STATIONARY, "S⁺ gradient {stationary:.2e}");
@@ -54,7 +54,7 @@ fn check_plus_action<S: System<4>>(ld: &ddirac::DiscreteLagrangian<'_, S>, solut
 }
 
 /// Σ e_{d+} along Λ_{d+}(curve) is stationary and equals S⁺ (reduced variational principle).
-fn check_reduced_plus<S: System<4>>(reduction: &ReducedLagrangian<'_, S>, solution: &Solution) -> f64 {
+fn check_reduced_plus<S: System<4>>(reduction: &ReducedLagrangian<S>, solution: &Solution) -> f64 {
     let curve = PlusCurve::<4>::from_trajectory(&solution.q, &solution.p).unwrap();
     let reduced = curve.trivialize(&reduction.connection, &reduction.split).unwrap();
     let stationary = relative(&reduced_action_plus_gradient(reduction, &reduced).unwrap());

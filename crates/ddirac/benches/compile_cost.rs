@@ -22,9 +22,9 @@ use ddirac::{Coordinate, DiscreteLagrangian, Rule, System};
 
 const STEP: f64 = 0.01;
 
-struct Ld<'a, S, const N: usize>(DiscreteLagrangian<'a, S>, [f64; N]);
+struct Ld<S, const N: usize>(DiscreteLagrangian<S>, [f64; N]);
 
-impl<S: System<N>, const N: usize> PairFunction<N> for Ld<'_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<N> for Ld<S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(&self.1, a, b)
     }

@@ -19,7 +19,7 @@ use ddirac::systems::PendulumChain;
 use ddirac::Scalar;
 use ddirac::{integrate, DiscreteLagrangian, Method, OutputOptions, Rule};
 
-struct Ld<'a, const N: usize>(DiscreteLagrangian<'a, PendulumChain<N>>, [f64; N]);
+struct Ld<'a, const N: usize>(DiscreteLagrangian<&'a PendulumChain<N>>, [f64; N]);
 
 impl<const N: usize> PairFunction<N> for Ld<'_, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {

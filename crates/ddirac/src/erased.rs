@@ -168,7 +168,7 @@ pub trait DynStepper {
     fn renew(&mut self, problem: &Problem) -> Result<bool, Error>;
 }
 
-impl<S: System<N>, const N: usize> DynStepper for Stepper<'_, S, N> {
+impl<S: System<N> + Clone, const N: usize> DynStepper for Stepper<S, N> {
     fn k(&self) -> usize {
         Stepper::k(self)
     }

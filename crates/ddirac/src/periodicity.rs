@@ -17,7 +17,7 @@ pub const PERIODICITY_TOLERANCE: f64 = 1e-9;
 /// The periodicity deviation of L_d in each angle coordinate alone, over the pairs `samples`: one
 /// [`Deviation`] per angle, in coordinate order.
 pub fn periodicity_deviations<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     samples: &[Sample<N>],
 ) -> Vec<Deviation> {
     let coordinates = ld.system.coordinates();

@@ -56,7 +56,7 @@ impl Uniform {
 
 /// L_d and its gradient at (q0, q1), if all are finite.
 pub fn sample<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     q0: [f64; N],
     q1: [f64; N],
 ) -> Option<Sample<N>> {
@@ -70,7 +70,7 @@ pub fn sample<S: System<N>, const N: usize>(
 /// Up to [`WANTED`] pairs near (q, q + dq) where L_d and its gradient are finite, the first step
 /// (q, q + dq) first when it is one of them. Fewer are returned only when no more could be found.
 pub fn near<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     q: &[f64; N],
     dq: &[f64; N],
 ) -> Vec<Sample<N>> {

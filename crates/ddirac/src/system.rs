@@ -163,3 +163,20 @@ impl Split {
         full
     }
 }
+
+/// A reference to a system is the system: the engine holds systems by value, so that it can hold a
+/// borrowed system and a system of its own (a chart of its atlas) alike.
+impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
+    fn coordinates(&self) -> [Coordinate; N] {
+        (**self).coordinates()
+    }
+
+    #[inline(always)]
+    fn lagrangian<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
+        (**self).lagrangian(q, v)
+    }
+
+    fn exact_solution(&self, q0: &[f64; N], p0: &[f64; N], t: f64) -> Option<[Option<f64>; N]> {
+        (**self).exact_solution(q0, p0, t)
+    }
+}

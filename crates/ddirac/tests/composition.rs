@@ -146,7 +146,7 @@ fn composed_runs_conserve_the_momentum_map_exactly() {
 }
 
 /// One composed step (q, p) ↦ (q', p') from a cold state of `stepper`.
-fn one_step<S: System<N>, const N: usize>(stepper: &mut Stepper<'_, S, N>, q: [f64; N], p: [f64; N]) -> Vec<f64> {
+fn one_step<S: System<N> + Clone, const N: usize>(stepper: &mut Stepper<S, N>, q: [f64; N], p: [f64; N]) -> Vec<f64> {
     stepper.restart(&State::new(0, q, p)).unwrap();
     stepper.step().unwrap();
     let row = stepper.row();

@@ -14,7 +14,7 @@ use ddirac::{
 };
 
 /// Steps `stepper` to the end, collecting the rows as `integrate` reports them with `every` = 1.
-fn rows_to_end<S: System<N>, const N: usize>(stepper: &mut Stepper<'_, S, N>) -> Vec<OwnedRow<N>> {
+fn rows_to_end<S: System<N> + Clone, const N: usize>(stepper: &mut Stepper<S, N>) -> Vec<OwnedRow<N>> {
     let mut rows = vec![];
     while !stepper.is_finished() {
         let mut row = stepper.row();

@@ -123,9 +123,9 @@ fn every_operation_matches_dual_numbers() {
 }
 
 /// L_d(base + a, base + b) of a system.
-struct Local<'s, S>(DiscreteLagrangian<'s, S>);
+struct Local<S>(DiscreteLagrangian<S>);
 
-impl<S: System<N>, const N: usize> Generic<N> for Local<'_, S> {
+impl<S: System<N>, const N: usize> Generic<N> for Local<S> {
     fn eval<D: Scalar>(&self, base: &[D; N], a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(base, a, b)
     }

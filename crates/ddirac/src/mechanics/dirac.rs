@@ -20,17 +20,17 @@ use crate::scheme::{Scheme, StepEquations};
 use crate::{DiscreteLagrangian, System};
 
 /// The position–momentum discrete Euler–Lagrange map, shared by the (+) and (−) variants.
-pub(crate) struct LagrangeDirac<'a, S> {
-    pub ld: DiscreteLagrangian<'a, S>,
+pub(crate) struct LagrangeDirac<S> {
+    pub ld: DiscreteLagrangian<S>,
 }
 
-impl<S: System<N>, const N: usize> Scheme<N> for LagrangeDirac<'_, S> {
+impl<S: System<N> + Clone, const N: usize> Scheme<N> for LagrangeDirac<S> {
     fn base(&self, q: &[f64; N]) -> [f64; N] {
         *q
     }
 
     fn resized(&self, step: f64) -> Self {
-        Self { ld: DiscreteLagrangian::new(self.ld.system, self.ld.rule, step) }
+        Self { ld: DiscreteLagrangian::new(self.ld.system.clone(), self.ld.rule, step) }
     }
 
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D

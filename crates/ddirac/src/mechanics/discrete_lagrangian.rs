@@ -68,9 +68,9 @@ impl Rule {
 /// assert!((value - 0.05).abs() < 1e-15);
 /// ```
 #[derive(Debug)]
-pub struct DiscreteLagrangian<'a, S> {
+pub struct DiscreteLagrangian<S> {
     /// The continuous system.
-    pub system: &'a S,
+    pub system: S,
     /// The quadrature rule.
     pub rule: Rule,
     /// The step size h.
@@ -91,9 +91,9 @@ pub struct Derivatives<const N: usize> {
     pub d1d2: SMatrix<f64, N, N>,
 }
 
-impl<'a, S> DiscreteLagrangian<'a, S> {
+impl<S> DiscreteLagrangian<S> {
     /// Couples a system with a rule and a step size.
-    pub fn new(system: &'a S, rule: Rule, step: f64) -> Self {
+    pub fn new(system: S, rule: Rule, step: f64) -> Self {
         Self { system, rule, step }
     }
 
@@ -194,12 +194,12 @@ impl<'a, S> DiscreteLagrangian<'a, S> {
 }
 
 /// L_d(base + δ0, base + δ1) as a function of the offsets (δ0, δ1).
-struct Local<'l, 'a, S, const N: usize> {
-    ld: &'l DiscreteLagrangian<'a, S>,
+struct Local<'l, S, const N: usize> {
+    ld: &'l DiscreteLagrangian<S>,
     base: &'l [f64; N],
 }
 
-impl<S: System<N>, const N: usize> PairFunction<N> for Local<'_, '_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<N> for Local<'_, S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.ld.eval_local(self.base, a, b)
     }

@@ -24,7 +24,7 @@ pub const INVARIANCE_TOLERANCE: f64 = 1e-9;
 /// pairs `samples` (from [`crate::sampling::near`]): one [`Deviation`] per group coordinate, in the order of
 /// `split.group`.
 pub fn invariance_deviations<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<'_, S>,
+    ld: &DiscreteLagrangian<S>,
     split: &Split,
     samples: &[Sample<N>],
 ) -> Vec<Deviation> {

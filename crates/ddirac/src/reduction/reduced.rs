@@ -41,16 +41,16 @@ use crate::scheme::{Scheme, StepEquations};
 use crate::{DiscreteLagrangian, System, Variant};
 
 /// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
-pub(crate) struct LagrangePoincareDirac<'a, S> {
-    reduction: ReducedLagrangian<'a, S>,
+pub(crate) struct LagrangePoincareDirac<S> {
+    reduction: ReducedLagrangian<S>,
     variant: Variant,
     /// Whether the connection K is zero (then K(x1 − x0) and Kᵀμ vanish, and λ̂_d is the identity).
     flat: bool,
 }
 
-impl<'a, S> LagrangePoincareDirac<'a, S> {
+impl<S> LagrangePoincareDirac<S> {
     /// The scheme of `variant` on the reduced Lagrangians of `reduction`.
-    pub(crate) fn new(reduction: ReducedLagrangian<'a, S>, variant: Variant) -> Self {
+    pub(crate) fn new(reduction: ReducedLagrangian<S>, variant: Variant) -> Self {
         let flat = reduction.connection.is_zero();
         Self { reduction, variant, flat }
     }
@@ -82,9 +82,9 @@ impl<'a, S> LagrangePoincareDirac<'a, S> {
     }
 }
 
-impl<S: System<N>, const N: usize> Scheme<N> for LagrangePoincareDirac<'_, S> {
+impl<S: System<N> + Clone, const N: usize> Scheme<N> for LagrangePoincareDirac<S> {
     fn resized(&self, step: f64) -> Self {
-        let ld = DiscreteLagrangian::new(self.reduction.ld.system, self.reduction.ld.rule, step);
+        let ld = DiscreteLagrangian::new(self.reduction.ld.system.clone(), self.reduction.ld.rule, step);
         let reduction = ReducedLagrangian {
             ld,
             split: self.reduction.split.clone(),

@@ -29,19 +29,19 @@ use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
 /// assert!((l - 0.2).abs() < 1e-15);
 /// ```
 #[derive(Debug)]
-pub struct ReducedLagrangian<'a, S> {
+pub struct ReducedLagrangian<S> {
     /// L_d.
-    pub ld: DiscreteLagrangian<'a, S>,
+    pub ld: DiscreteLagrangian<S>,
     /// Shape and group coordinates.
     pub split: Split,
     /// The linear connection K = h_{d,Σ}.
     pub connection: Connection,
 }
 
-impl<'a, S> ReducedLagrangian<'a, S> {
+impl<S> ReducedLagrangian<S> {
     /// L_d of `system` by `rule` with step `step`, reduced with `connection`, whose size must match the
     /// system's shape and group coordinates.
-    pub fn new<const N: usize>(system: &'a S, rule: Rule, step: f64, connection: Connection) -> Result<Self, Error>
+    pub fn new<const N: usize>(system: S, rule: Rule, step: f64, connection: Connection) -> Result<Self, Error>
     where
         S: System<N>,
     {

@@ -124,9 +124,9 @@ fn first_increment<const N: usize>(v: &[f64; N], h: f64) -> [f64; N] {
 /// // Paper, Table 1: N = 200 → 0.01664
 /// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
 /// ```
-pub struct Stepper<'a, S, const N: usize> {
-    context: Context<'a, S, N>,
-    schemes: Schemes<'a, S, N>,
+pub struct Stepper<S, const N: usize> {
+    context: Context<S, N>,
+    schemes: Schemes<S, N>,
     derivative_path: DerivativePath,
     /// The Jacobian memory of a first step: none kept, with the relative cost of the derivatives.
     fresh_kept: newton::KeptJacobian<N>,
@@ -137,9 +137,9 @@ pub struct Stepper<'a, S, const N: usize> {
 }
 
 /// The schemes of a run's sub-steps with their step equations and derivatives: unreduced or reduced.
-enum Schemes<'a, S, const N: usize> {
-    Unreduced(Stages<LagrangeDirac<'a, S>, N>),
-    Reduced(Stages<LagrangePoincareDirac<'a, S>, N>),
+enum Schemes<S, const N: usize> {
+    Unreduced(Stages<LagrangeDirac<S>, N>),
+    Reduced(Stages<LagrangePoincareDirac<S>, N>),
 }
 
 struct Equipped<Sc, const N: usize> {
@@ -167,8 +167,8 @@ macro_rules! equipped {
 }
 
 /// What the steps and rows of a stepper read but do not change.
-struct Context<'a, S, const N: usize> {
-    system: &'a S,
+struct Context<S, const N: usize> {
+    system: S,
     method: Method,
     h: f64,
     steps: usize,
@@ -182,29 +182,29 @@ struct Context<'a, S, const N: usize> {
     legendre_at_start: f64,
 }
 
-impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
+impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
     /// first step: an error for input that a run refuses, or for a hypothesis that fails
     /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary).
-    pub fn new(system: &'a S, problem: &Problem, method: &Method) -> Result<Self, Error> {
-        let setup = Setup::new(system, problem, method)?;
-        let check_warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
+    pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let setup = Setup::new(&system, problem, method)?;
+        let check_warnings = crate::check::findings(&system, problem, method, &setup).verdict(method)?;
         let coordinates = system.coordinates();
         let kinds = coordinates.each_ref().map(|c| c.kind);
         let (h, steps) = (problem.step, problem.steps);
-        let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
+        let legendre_at_start = legendre::conditioning(&system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let started = Instant::now();
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
         let first = FirstStep { q: Configuration::new(setup.q0, kinds), p: setup.p0, dq: setup.dq0 };
         let (schemes, derivative_path) = if method.reduced {
             let scheme = |step| -> Result<_, Error> {
-                let reduction = ReducedLagrangian::new(system, method.rule, step, setup.connection.clone())?;
+                let reduction = ReducedLagrangian::new(system.clone(), method.rule, step, setup.connection.clone())?;
                 Ok(LagrangePoincareDirac::new(reduction, method.variant))
             };
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Reduced(stages), path)
         } else {
-            let scheme = |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system, method.rule, step) });
+            let scheme = |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system.clone(), method.rule, step) });
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Unreduced(stages), path)
         };
@@ -373,7 +373,7 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
         }
-        let (system, (q, p)) = (self.context.system, (&state.q, &state.p));
+        let (system, (q, p)) = (&self.context.system, (&state.q, &state.p));
         let (v, mismatch) = legendre::velocity(system, q, p);
         let scale = p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if mismatch > crate::CONSTRAINT_TOLERANCE * (1.0 + scale) {
@@ -407,11 +407,11 @@ impl<'a, S: System<N>, const N: usize> Stepper<'a, S, N> {
         if h.to_bits() != self.context.h.to_bits() || steps != self.context.steps || !renewable {
             return Ok(false);
         }
-        let (system, method) = (self.context.system, &self.context.method);
-        let setup = Setup::new(system, problem, method)?;
-        let check_warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
+        let (system, method) = (&self.context.system, &self.context.method);
+        let setup = Setup::new(&system, problem, method)?;
+        let check_warnings = crate::check::findings(&system, problem, method, &setup).verdict(method)?;
         let started = Instant::now();
-        let legendre_at_start = legendre::conditioning(system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
+        let legendre_at_start = legendre::conditioning(&system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
         let (kinds, split) = (self.context.kinds, &self.context.split);
         let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
         let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, setup.dq0, kinds, split, method, warnings));

@@ -69,11 +69,11 @@ impl<const N: usize> Record<N> {
 impl<const N: usize> Progress<N> {
     /// The row of step k; its energy goes into the record.
     #[inline]
-    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<'_, S, N>) -> OwnedRow<N> {
+    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<S, N>) -> OwnedRow<N> {
         let p = scheme.p_from_momenta(&self.momenta);
         let mut momentum_map = [0.0; N];
         momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
-        let energy = legendre::hamiltonian(context.system, self.config.base(), &p);
+        let energy = legendre::hamiltonian(&context.system, self.config.base(), &p);
         self.record.energy.push(energy);
         OwnedRow {
             k: self.k,
@@ -138,7 +138,7 @@ impl<const N: usize> Progress<N> {
     pub(super) fn step<S: System<N>, Sc: Scheme<N>>(
         &mut self,
         stages: &Stages<Sc, N>,
-        context: &Context<'_, S, N>,
+        context: &Context<S, N>,
     ) -> Result<StepReport, Error> {
         let taken = if stages.sequence.len() == 1 {
             self.take_basic(stages.first(), context)
@@ -161,7 +161,7 @@ impl<const N: usize> Progress<N> {
     /// Why a solved step cannot be trusted, if it cannot: its discrete energy (when the energy is
     /// watched) moved from the last step's by more than [`IMPLAUSIBLE_ENERGY_CHANGE`] of its scale.
     #[inline]
-    fn implausible<S: System<N>>(&self, taken: &Taken<N>, context: &Context<'_, S, N>) -> Option<Error> {
+    fn implausible<S: System<N>>(&self, taken: &Taken<N>, context: &Context<S, N>) -> Option<Error> {
         let (pv, _) = taken.pv?;
         let h = context.h;
         let (pv, energy) = (pv / h, pv / h - taken.discrete_energy / h);
@@ -179,7 +179,7 @@ impl<const N: usize> Progress<N> {
     fn subdivide<S: System<N>, Sc: Scheme<N>>(
         &mut self,
         stages: &Stages<Sc, N>,
-        context: &Context<'_, S, N>,
+        context: &Context<S, N>,
         failure: Error,
         solved: Option<Taken<N>>,
     ) -> Result<Taken<N>, Error> {
@@ -254,7 +254,7 @@ impl<const N: usize> Progress<N> {
     fn take_basic<S: System<N>, Sc: Scheme<N>>(
         &mut self,
         e: &Equipped<Sc, N>,
-        context: &Context<'_, S, N>,
+        context: &Context<S, N>,
     ) -> Result<Taken<N>, Error> {
         let (k, h) = (self.k, context.h);
         let t = k as f64 * h;
@@ -281,7 +281,7 @@ impl<const N: usize> Progress<N> {
         &mut self,
         stages: &Stages<Sc, N>,
         memory: Option<&mut [StageMemory<N>]>,
-        context: &Context<'_, S, N>,
+        context: &Context<S, N>,
     ) -> Result<Taken<N>, Error> {
         let (k, h) = (self.k, context.h);
         let t = k as f64 * h;
@@ -337,7 +337,7 @@ impl<const N: usize> Progress<N> {
 
     /// Commits a solved step: the chart watch, the record, the energy watch, the new state.
     #[inline(always)]
-    fn commit<S: System<N>>(&mut self, taken: Taken<N>, context: &Context<'_, S, N>) -> Result<StepReport, Error> {
+    fn commit<S: System<N>>(&mut self, taken: Taken<N>, context: &Context<S, N>) -> Result<StepReport, Error> {
         let (method, h, split) = (&context.method, context.h, &context.split);
         let (k, action) = (self.k, method.energy_jump.action);
         let t = k as f64 * h;
@@ -393,7 +393,7 @@ impl<const N: usize> Progress<N> {
 
     /// The warning for angle `i` advancing `by` radians in the step `dq` from q_k.
     #[cold]
-    fn fast_angle<S: System<N>>(&self, context: &Context<'_, S, N>, dq: &[f64; N], i: usize, by: f64) -> Warning {
+    fn fast_angle<S: System<N>>(&self, context: &Context<S, N>, dq: &[f64; N], i: usize, by: f64) -> Warning {
         let name = &context.system.coordinates()[i].name;
         let at = Some((self.k, self.k as f64 * context.h));
         let advanced =
@@ -418,12 +418,12 @@ impl<const N: usize> Progress<N> {
 /// The chart watch's diagnosis at `q` for the increment `dq` ([`chart_watch::singular_chart`]).
 #[cold]
 fn singular_chart<S: System<N>, const N: usize>(
-    context: &Context<'_, S, N>,
+    context: &Context<S, N>,
     q: &[f64; N],
     dq: &[f64; N],
 ) -> Option<String> {
     let v = dq.map(|d| d / context.h);
-    chart_watch::singular_chart(context.system, context.legendre_at_start, q, &v)
+    chart_watch::singular_chart(&context.system, context.legendre_at_start, q, &v)
 }
 
 /// A jump of the energy as the method asks: an error, or a warning.
@@ -476,7 +476,7 @@ fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
 /// predicted increment.
 #[cold]
 fn newton_failed<S: System<N>, Sc: Scheme<N>, const N: usize>(
-    context: &Context<'_, S, N>,
+    context: &Context<S, N>,
     k: usize,
     q: &[f64; N],
     scheme: &Sc,
