@@ -247,7 +247,7 @@ mod tests {
     }
 
     const ROW: Row<'static> =
-        Row { k: 0, t: 0.1, q: &[1.0 / 3.0], p: &[2.0], energy: 3.0, discrete_energy: None, momentum_map: &[2.0] };
+        Row { k: 0, t: 0.1, q: &[1.0 / 3.0], p: &[2.0], energy: 3.0, discrete_energy: None, momentum_map: &[2.0], chart: 0 };
 
     #[test]
     fn the_csv_holds_the_header_and_the_rows() {

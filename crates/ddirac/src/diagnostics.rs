@@ -19,6 +19,8 @@ pub struct Row<'a> {
     pub discrete_energy: Option<f64>,
     /// The momentum map J(q_k, p_k) = p_g, one entry per group coordinate.
     pub momentum_map: &'a [f64],
+    /// The chart of the atlas the step was in (0: the main chart, in which q and p are reported).
+    pub chart: usize,
 }
 
 /// Minimum, maximum and mean of a quantity, with its first value.
@@ -260,6 +262,8 @@ pub struct Summary {
     pub wall_seconds: f64,
     /// ‖q(T) − q_N‖ on the coordinates the exact solution gives, when the system has one.
     pub reference_error: Option<f64>,
+    /// How many times the run switched between the charts of the system's atlas.
+    pub chart_switches: usize,
     /// What the user should know about the run (see [`Warning`]), in the order first seen.
     pub warnings: Vec<Warning>,
 }

@@ -312,6 +312,8 @@ pub struct DynRow {
     pub discrete_energy: Option<f64>,
     /// The momentum map J(q_k, p_k) = p_g.
     pub momentum_map: Vec<f64>,
+    /// The chart of the atlas the step was in (0: the main chart).
+    pub chart: usize,
 }
 
 impl<const N: usize> From<OwnedRow<N>> for DynRow {
@@ -324,6 +326,7 @@ impl<const N: usize> From<OwnedRow<N>> for DynRow {
             energy: row.energy,
             discrete_energy: row.discrete_energy,
             momentum_map: row.momentum_map().to_vec(),
+            chart: row.chart,
         }
     }
 }

@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod ad;
+pub mod atlas;
 pub mod baselines;
 pub mod chart;
 mod check;
@@ -67,4 +68,4 @@ pub use scalar::{RuntimeInput, Scalar};
 pub use stepper::{
     OwnedRow, State, StepReport, Stepper, IMPLAUSIBLE_ENERGY_CHANGE, LEGENDRE_DROP, MAX_ANGLE_STEP, MAX_SUBDIVISION,
 };
-pub use system::{Coordinate, CoordinateKind, Role, Split, System};
+pub use system::{Chart, Coordinate, CoordinateKind, Role, Split, System};

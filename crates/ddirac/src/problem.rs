@@ -209,6 +209,9 @@ pub struct Method {
     /// a symmetric composition of order 4, 6 or 8 (only for the symmetric rules, midpoint and
     /// trapezoid).
     pub composition: Composition,
+    /// Switch between the charts of the system's atlas where the current one degrades (paper §6;
+    /// [`crate::atlas`]); without an atlas, or with `false`, every step is taken in the main chart.
+    pub atlas: bool,
 }
 
 impl Default for Method {
@@ -223,6 +226,7 @@ impl Default for Method {
             differentiation: Differentiation::Auto,
             energy_jump: EnergyJump::default(),
             composition: Composition::Basic,
+            atlas: true,
         }
     }
 }

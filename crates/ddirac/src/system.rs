@@ -95,6 +95,52 @@ pub trait System<const N: usize> {
     fn exact_solution(&self, _q0: &[f64; N], _p0: &[f64; N], _t: f64) -> Option<[Option<f64>; N]> {
         None
     }
+
+    /// The other charts of the system's atlas (paper §6), numbered from 1 in this order; chart 0 is
+    /// the main chart, that of [`System::coordinates`] and [`System::lagrangian`]. A run switches to
+    /// the best chart where the current one degrades ([`System::chart_quality`]) and reports every row
+    /// in the main chart. Systems without an atlas keep the default, none. See [`crate::atlas`].
+    fn charts(&self) -> Vec<Chart<N>> {
+        Vec::new()
+    }
+
+    /// The main chart's coordinates of the point whose coordinates in chart `chart` (≥ 1) are `q`:
+    /// the map φ of the chart, generic over the scalar (the chart's Lagrangian is L ∘ Tφ).
+    fn to_main<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
+        *q
+    }
+
+    /// The coordinates in chart `chart` (≥ 1) of the point whose main-chart coordinates are `q`: the
+    /// inverse ψ = φ⁻¹, generic over the scalar.
+    fn from_main<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
+        *q
+    }
+
+    /// How good chart `chart` (0 for the main chart) is at the point whose coordinates in it are `q`:
+    /// about 1 where the chart is regular, falling to 0 at its singular set (|sin θ| for spherical
+    /// coordinates with polar angle θ).
+    fn chart_quality(&self, _chart: usize, _q: &[f64; N]) -> f64 {
+        1.0
+    }
+
+    /// Main-chart coordinates `q` of a point, moved to the representative nearest `near` (the last
+    /// reported point), so that the reported motion is continuous across chart switches. The default
+    /// moves each angle by whole turns; a main chart whose angles are periodic together (ϑ1 ± π,
+    /// ϑ2 ∓ π of the double spherical pendulum) says so here.
+    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N]) -> [f64; N] {
+        let kinds = self.coordinates().map(|c| c.kind);
+        crate::atlas::nearest_turns(q, near, &kinds)
+    }
+}
+
+/// A chart of a system's atlas other than the main one: its name and its coordinates, with their
+/// roles (the group coordinates translated by the same symmetry as the main chart's) and kinds.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Chart<const N: usize> {
+    /// The chart's name, for messages.
+    pub name: String,
+    /// The chart's coordinates.
+    pub coordinates: [Coordinate; N],
 }
 
 /// The indices of the shape coordinates x and group coordinates g of a system.
@@ -178,5 +224,27 @@ impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
 
     fn exact_solution(&self, q0: &[f64; N], p0: &[f64; N], t: f64) -> Option<[Option<f64>; N]> {
         (**self).exact_solution(q0, p0, t)
+    }
+
+    fn charts(&self) -> Vec<Chart<N>> {
+        (**self).charts()
+    }
+
+    #[inline(always)]
+    fn to_main<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        (**self).to_main(chart, q)
+    }
+
+    #[inline(always)]
+    fn from_main<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        (**self).from_main(chart, q)
+    }
+
+    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
+        (**self).chart_quality(chart, q)
+    }
+
+    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N]) -> [f64; N] {
+        (**self).nearest_in_main(q, near)
     }
 }

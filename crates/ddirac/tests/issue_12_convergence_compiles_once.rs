@@ -20,7 +20,7 @@ use pendulum_text::double_spherical_pendulum_spec;
 fn run<S: System<4>>(system: &S, step: f64, steps: usize, reduced: bool) -> Solution {
     let problem =
         Problem::new(step, steps, vec![0.0, 2.25, 2.0, 3.0], InitialMomentum::Momentum(vec![0.0, 0.0, 1.0, 1.0]));
-    let method = Method { reduced, differentiation: Differentiation::Compiled, ..Method::default() };
+    let method = Method { reduced, differentiation: Differentiation::Compiled, atlas: false, ..Method::default() };
     let solution = solve(system, &problem, &method, &OutputOptions::default()).unwrap();
     assert!(matches!(solution.summary.derivatives, DerivativePath::Compiled { .. }));
     solution

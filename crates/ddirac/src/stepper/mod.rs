@@ -11,6 +11,7 @@
 //! copies all of it: a stepper restarted from a state continues bit for bit as the stepper it was
 //! taken from.
 
+mod atlas;
 mod chart_watch;
 mod progress;
 mod stages;
@@ -37,6 +38,7 @@ use progress::{jumped, Progress};
 use stages::Stages;
 pub use stages::MAX_SUBDIVISION;
 use state::Memory;
+pub use atlas::Stepper;
 pub use state::{OwnedRow, State, StepReport};
 
 /// What a run needs before its first step: validated initial data, the split, the connection and a
@@ -84,47 +86,9 @@ fn first_increment<const N: usize>(v: &[f64; N], h: f64) -> [f64; N] {
     std::array::from_fn(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
 }
 
-/// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
-///
-/// [`Stepper::new`] does what a run does before its first step: it checks the input and the
-/// hypotheses of the method ([`crate::check`]), chooses the unreduced or the reduced equations and
-/// prepares their derivatives. Then [`Stepper::step`] advances from step k to k + 1,
-/// [`Stepper::row`] reports the current state, and [`Stepper::finish`] gives the run's summary.
-/// [`Stepper::state`] saves the state of step k with everything that influences later steps (the
-/// predictor's memory, the kept Newton Jacobian, the energy watch) and the run's record so far;
-/// [`Stepper::restart`] continues from it bit for bit. [`State::new`] gives a cold state from q and p
-/// alone, for starting a prepared stepper from other initial data (an ensemble).
-///
-/// ```
-/// use ddirac::{solve, Method, OutputOptions, Rule, Stepper, systems::ChargedParticle};
-/// let (system, problem) = (ChargedParticle::default(), ChargedParticle::paper_problem(200));
-/// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
-///
-/// let mut stepper = Stepper::new(&system, &problem, &method).unwrap();
-/// for _ in 0..120 {
-///     stepper.step().unwrap();
-/// }
-/// let saved = stepper.state();
-/// while !stepper.is_finished() {
-///     stepper.step().unwrap();
-/// }
-/// let q_end = stepper.row().q;
-///
-/// // Another stepper continues from the saved state as the first one did, bit for bit ...
-/// let mut again = Stepper::new(&system, &problem, &method).unwrap();
-/// again.restart(&saved).unwrap();
-/// assert_eq!(again.k(), 120);
-/// while !again.is_finished() {
-///     again.step().unwrap();
-/// }
-/// assert_eq!(again.row().q, q_end);
-/// // ... and both end where `solve` ends.
-/// let solution = solve(&system, &problem, &method, &OutputOptions::default()).unwrap();
-/// assert_eq!(solution.q.last().unwrap().as_slice(), q_end.as_slice());
-/// // Paper, Table 1: N = 200 → 0.01664
-/// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
-/// ```
-pub struct Stepper<S, const N: usize> {
+/// A run in one chart of the system's atlas ([`crate::atlas::InChart`]): what [`Stepper`] does between chart
+/// switches, and all of a run without them.
+pub(crate) struct ChartStepper<S, const N: usize> {
     context: Context<S, N>,
     schemes: Schemes<S, N>,
     derivative_path: DerivativePath,
@@ -182,7 +146,7 @@ struct Context<S, const N: usize> {
     legendre_at_start: f64,
 }
 
-impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
+impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
     /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
     /// first step: an error for input that a run refuses, or for a hypothesis that fails
     /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary).
@@ -242,6 +206,11 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         })
     }
 
+    /// The canonical momenta p_k.
+    fn p(&self) -> [f64; N] {
+        equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&self.progress.momenta))
+    }
+
     /// Report angles wrapped to (−π, π] (in [`Stepper::row`] and the summary's final q) instead of
     /// continuous; the default is continuous.
     pub fn set_wrap_angles(&mut self, wrap: bool) {
@@ -256,11 +225,6 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// The current time t_k = k h.
     pub fn t(&self) -> f64 {
         self.progress.k as f64 * self.context.h
-    }
-
-    /// The number of steps N of the problem.
-    pub fn steps(&self) -> usize {
-        self.context.steps
     }
 
     /// Whether all N steps are taken.
@@ -339,7 +303,9 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     pub fn state(&self) -> State<N> {
         let progress = &self.progress;
         let p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&progress.momenta));
-        let memory = Memory { method: self.context.method.clone(), h: self.context.h, progress: progress.clone() };
+        let (method, h) = (self.context.method.clone(), self.context.h);
+        let (chart, near) = (0, progress.config.unwrapped());
+        let memory = Memory { method, h, progress: progress.clone(), chart, near };
         State { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
     }
 
@@ -430,13 +396,6 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         Ok(true)
     }
 
-    /// The summary of the run up to the current step: the energy watch's last verdict (an error
-    /// under [`crate::JumpAction::Fail`] when the energy jumped and did not come back), final state,
-    /// statistics, Newton counts and warnings.
-    pub fn finish(mut self) -> Result<Summary, Error> {
-        self.summary()
-    }
-
     /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
     /// restarted.
     pub fn summary(&mut self) -> Result<Summary, Error> {
@@ -474,6 +433,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
             derivatives: self.derivative_path.clone(),
             wall_seconds: self.started.elapsed().as_secs_f64(),
             reference_error,
+            chart_switches: 0,
             warnings: record.warnings.0,
         })
     }

@@ -60,7 +60,7 @@ pub(super) struct Record<const N: usize> {
 
 impl<const N: usize> Record<N> {
     /// Folds the momentum map of the scheme `momenta` into the largest drift.
-    fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
+    pub(super) fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
         let j = split.momentum_map(momenta);
         self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
     }
@@ -84,6 +84,7 @@ impl<const N: usize> Progress<N> {
             discrete_energy: None,
             momentum_map,
             n_g: context.split.n_g(),
+            chart: 0,
         }
     }
 

@@ -37,6 +37,9 @@ pub(super) struct Memory<const N: usize> {
     pub(super) method: Method,
     pub(super) h: f64,
     pub(super) progress: Progress<N>,
+    /// The chart the progress is in, and the last point in the main chart.
+    pub(super) chart: usize,
+    pub(super) near: [f64; N],
 }
 
 impl<const N: usize> State<N> {
@@ -90,6 +93,8 @@ pub struct OwnedRow<const N: usize> {
     pub energy: f64,
     /// L_d(q_k, q_{k+1}), once step k is taken (the stepper's row of step k is taken before).
     pub discrete_energy: Option<f64>,
+    /// The chart of the atlas the step was in (0: the main chart, in which q and p are reported).
+    pub chart: usize,
     pub(super) momentum_map: [f64; N],
     pub(super) n_g: usize,
 }
@@ -110,6 +115,7 @@ impl<const N: usize> OwnedRow<N> {
             energy: self.energy,
             discrete_energy: self.discrete_energy,
             momentum_map: self.momentum_map(),
+            chart: self.chart,
         }
     }
 }

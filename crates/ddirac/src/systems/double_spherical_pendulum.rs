@@ -17,10 +17,47 @@
 //! p0 = (μ0; w0) = (0, 0, 1, 1) ([`DoubleSphericalPendulum::paper_problem`]), and reports the reduced
 //! run about 75 % faster than the unreduced one. The run passes within |sin φ| ≈ 2·10⁻³ of the lower
 //! pole, where the chart is singular; that passage amplifies round-off about 10⁵×.
+//!
+//! # The atlas
+//!
+//! The main chart is singular where either bob is at a pole (sin φ_i = 0): there its azimuth θ_i,
+//! and with it ϑ1 and ϑ2, is undefined. Two more charts cover those places, each keeping a group
+//! coordinate that the rotation about the vertical translates (so reduced runs go on in them):
+//!
+//! - chart 1, *first bob near a pole*: (θ2, a1, b1, φ2). The group coordinate is the second bob's
+//!   azimuth θ2 (the first bob's is what degenerates). The first bob's direction, seen in the frame
+//!   turned by θ2 about the vertical, u = (sin φ1 cos α, sin φ1 sin α, cos φ1) with α = θ1 − θ2 =
+//!   −2ϑ2, is written in spherical angles about the frame's horizontal y axis:
+//!   u = (sin a1 cos b1, cos a1, sin a1 sin b1). Both vertical poles u = ±e_z are regular points
+//!   (a1 = π/2, b1 = ±π/2); the chart is singular only at u = ±e_y. The rotation about the vertical
+//!   moves θ2 and leaves u: translation of θ2 alone. Back: α = atan2(u_y, u_x), ϑ2 = −α/2,
+//!   ϑ1 = θ2 − ϑ2, φ1 = atan2(√(u_x² + u_y²), u_z).
+//! - chart 2, *second bob near a pole*: (θ1, φ1, a2, b2), the same with the bobs' roles exchanged:
+//!   α = θ2 − θ1 = 2ϑ2, ϑ2 = α/2, ϑ1 = θ1 + ϑ2.
+//!
+//! - charts 3 to 6, *both bobs near a pole*: (x1, y1, x2, y2), the horizontal components of both
+//!   bobs' directions, each on its lower or upper hemisphere (lower–lower, lower–upper, upper–lower,
+//!   upper–upper). Near the configuration with both bobs on the vertical axis, which the rotation
+//!   fixes, no chart has a group coordinate: the rotation acts on these charts linearly, so their
+//!   steps are unreduced and conserve the momentum map by the discrete Noether theorem (L_d by the
+//!   midpoint or trapezoid rule is invariant under linear symmetries), to the Newton tolerance.
+//!
+//! Each chart's measure is the smaller of its two sines (|sin φ1|, |sin φ2| in the main chart;
+//! sin a1 and |sin φ2| in chart 1; |sin φ1| and sin a2 in chart 2), and in charts 3 to 6 the smaller
+//! of the two |cos φ_i| (the hemispheres' edges are their singular set).
 
 use num_dual::DualNum;
 
-use crate::{Coordinate, Error, InitialMomentum, Problem, System};
+use crate::{Chart, Coordinate, Error, InitialMomentum, Problem, Scalar, System};
+
+/// The hemispheres of the charts with both bobs near a pole (charts 3 to 6): their names and
+/// whether each bob's is the lower one.
+const CAPS: [(&str, bool, bool); 4] = [
+    ("lower, lower", true, true),
+    ("lower, upper", true, false),
+    ("upper, lower", false, true),
+    ("upper, upper", false, false),
+];
 
 /// The double spherical pendulum.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,5 +160,94 @@ impl System<4> for DoubleSphericalPendulum {
             + cross * (2.0 * l1 * l2))
             * (0.5 * m2);
         t1 + t2 - c1 * (g * m1 * l1) - (c1 * l1 + c2 * l2) * (g * m2)
+    }
+
+    fn charts(&self) -> Vec<Chart<4>> {
+        let angle = |name: &str| Coordinate::shape(name).angle();
+        let caps = CAPS.iter().map(|(name, _, _)| Chart {
+            name: format!("both bobs near a pole ({name})"),
+            coordinates: ["x1", "y1", "x2", "y2"].map(Coordinate::shape),
+        });
+        let mut charts = vec![
+            Chart {
+                name: "first bob near a pole".into(),
+                coordinates: [Coordinate::group("theta2").angle(), angle("a1"), angle("b1"), angle("phi2")],
+            },
+            Chart {
+                name: "second bob near a pole".into(),
+                coordinates: [Coordinate::group("theta1").angle(), angle("phi1"), angle("a2"), angle("b2")],
+            },
+        ];
+        charts.extend(caps);
+        charts
+    }
+
+    fn to_main<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
+        // The bob near its pole: (a, b) → its polar angle φ and its azimuth α relative to the other.
+        let polar = |a: D, b: D| {
+            let (sa, ca) = a.sin_cos();
+            let (ux, uy, uz) = (sa * b.cos(), ca, sa * b.sin());
+            ((ux * ux + uy * uy).sqrt().atan2(uz), uy.atan2(ux))
+        };
+        if chart >= 3 {
+            let (_, lower1, lower2) = CAPS[chart - 3];
+            let cap = |x: D, y: D, lower: bool| {
+                let r2 = x * x + y * y;
+                let z = (-r2 + 1.0).sqrt();
+                (y.atan2(x), r2.sqrt().atan2(if lower { -z } else { z }))
+            };
+            let ((theta1, phi1), (theta2, phi2)) = (cap(q[0], q[1], lower1), cap(q[2], q[3], lower2));
+            return [(theta1 + theta2) * 0.5, phi1, (theta2 - theta1) * 0.5, phi2];
+        }
+        if chart == 1 {
+            let (phi1, alpha) = polar(q[1], q[2]);
+            let vartheta2 = alpha * -0.5;
+            [q[0] - vartheta2, phi1, vartheta2, q[3]]
+        } else {
+            let (phi2, alpha) = polar(q[2], q[3]);
+            let vartheta2 = alpha * 0.5;
+            [q[0] + vartheta2, q[1], vartheta2, phi2]
+        }
+    }
+
+    fn from_main<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
+        // The direction of a bob at polar angle φ and azimuth α relative to the other → (a, b).
+        let about_y = |phi: D, alpha: D| {
+            let (s, c) = phi.sin_cos();
+            let (ux, uy, uz) = (s * alpha.cos(), s * alpha.sin(), c);
+            ((ux * ux + uz * uz).sqrt().atan2(uy), uz.atan2(ux))
+        };
+        let (vartheta1, vartheta2) = (q[0], q[2]);
+        if chart >= 3 {
+            let (theta1, theta2) = (vartheta1 - vartheta2, vartheta1 + vartheta2);
+            let (s1, s2) = (q[1].sin(), q[3].sin());
+            return [s1 * theta1.cos(), s1 * theta1.sin(), s2 * theta2.cos(), s2 * theta2.sin()];
+        }
+        if chart == 1 {
+            let (a1, b1) = about_y(q[1], vartheta2 * -2.0);
+            [vartheta1 + vartheta2, a1, b1, q[3]]
+        } else {
+            let (a2, b2) = about_y(q[3], vartheta2 * 2.0);
+            [vartheta1 - vartheta2, q[1], a2, b2]
+        }
+    }
+
+    fn chart_quality(&self, chart: usize, q: &[f64; 4]) -> f64 {
+        let edge = |x: f64, y: f64| (1.0 - x * x - y * y).max(0.0).sqrt();
+        let (first, second) = match chart {
+            0 | 1 => (q[1].sin().abs(), q[3].sin().abs()),
+            2 => (q[1].sin().abs(), q[2].sin().abs()),
+            _ => (edge(q[0], q[1]), edge(q[2], q[3])),
+        };
+        first.min(second)
+    }
+
+    fn nearest_in_main(&self, q: [f64; 4], near: &[f64; 4]) -> [f64; 4] {
+        // ϑ1 ± π with ϑ2 ∓ π is one point (θ1 moved by a turn): move θ1 = ϑ1 − ϑ2 and θ2 = ϑ1 + ϑ2 by
+        // whole turns instead of ϑ1 and ϑ2.
+        let azimuths = |q: &[f64; 4]| [q[0] - q[2], q[1], q[0] + q[2], q[3]];
+        let kinds = [crate::CoordinateKind::Angle; 4];
+        let [theta1, phi1, theta2, phi2] = crate::atlas::nearest_turns(azimuths(&q), &azimuths(near), &kinds);
+        [0.5 * (theta1 + theta2), phi1, 0.5 * (theta2 - theta1), phi2]
     }
 }

@@ -7,6 +7,7 @@ mod double_spherical_pendulum;
 mod heavy_top;
 mod kepler;
 mod pendulum_chain;
+mod spherical_pendulum;
 mod two_body;
 
 pub use charged_particle::{ChargedParticle, TABLE_1};
@@ -14,6 +15,7 @@ pub use double_spherical_pendulum::DoubleSphericalPendulum;
 pub use heavy_top::HeavyTop;
 pub use kepler::Kepler;
 pub use pendulum_chain::{PendulumChain, CHAIN_LINKS};
+pub use spherical_pendulum::SphericalPendulum;
 pub use two_body::TwoBody;
 
 use crate::{DynSystem, Erased, Error, Input};
@@ -90,6 +92,12 @@ pub const BUILT_IN: &[BuiltIn] = &[
         description: "double spherical pendulum in coordinates (ϑ1, φ1, ϑ2, φ2) (paper §7.2)",
         defaults: || DoubleSphericalPendulum::default().parameters(),
         build: |o| build(DoubleSphericalPendulum::default(), o),
+    },
+    BuiltIn {
+        name: "spherical_pendulum",
+        description: "spherical pendulum in (θ, φ), θ the azimuth (group), φ from the upward vertical; atlas with two polar caps",
+        defaults: || SphericalPendulum::default().parameters(),
+        build: |o| build(SphericalPendulum::default(), o),
     },
     BuiltIn {
         name: "two_body",

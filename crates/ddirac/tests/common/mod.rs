@@ -4,9 +4,10 @@
 
 use ddirac::{solve, Connection, Method, OutputOptions, Problem, Rule, Solution, System, Variant};
 
-/// A method with the default Newton options and the invariance check on.
+/// A method with the default Newton options and the invariance check on, in the main chart only
+/// (the paper's scheme in the paper's coordinates, without the atlas's chart switches).
 pub fn method(rule: Rule, variant: Variant, reduced: bool, connection: Option<Connection>) -> Method {
-    Method { rule, variant, reduced, connection, ..Method::default() }
+    Method { rule, variant, reduced, connection, atlas: false, ..Method::default() }
 }
 
 /// Runs `problem`, keeping every row (angles unwrapped); panics with the library's message on error.

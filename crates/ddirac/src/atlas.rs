@@ -1,0 +1,169 @@
+//! An atlas of charts (paper §6): "we can make computations on the whole Q by starting from a specific
+//! compatible chart and changing to another one whenever it is necessary".
+//!
+//! A system declares its other charts through [`System::charts`], with the maps φ to the main chart
+//! and ψ = φ⁻¹ from it ([`System::to_main`], [`System::from_main`]) and a measure of where each chart
+//! is good ([`System::chart_quality`]). The Lagrangian is written once, in the main chart; in chart c
+//! it is L ∘ Tφ_c ([`InChart`]): L(φ(q'), Dφ(q') v'), with Dφ(q') v' from a dual number over the
+//! scalar, so that dual numbers, the tracer and compiled code all apply. Each chart is a
+//! retraction-compatible chart of its own, so a step in it is the paper's scheme in that chart:
+//! symplectic, and equivariant where the group translates the chart's group coordinates.
+//!
+//! Between steps, where the current chart's measure has fallen below [`SWITCH_BELOW`], the run moves
+//! to the chart with the largest measure at the current point: q' = ψ_b(φ_a(q)) and the momenta by the
+//! cotangent lift p' = Dτ(q')ᵀ p of the transition τ = ψ_a ∘ φ_b ([`transition`]), a symplectic map.
+//! Where the group translates the group coordinates of both charts (φ equivariant), Dτ maps the group
+//! direction to itself exactly, so the momentum map J = p_g is carried over exactly.
+
+use num_dual::Dual;
+
+use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
+
+/// A run leaves its chart after a step at which the chart's measure ([`System::chart_quality`]) is
+/// below this, for the chart with the largest measure there (if that is larger). Measures are about
+/// 1 where a chart is regular: |sin θ| = ½ is 30° from the pole of spherical coordinates.
+pub const SWITCH_BELOW: f64 = 0.5;
+
+/// A system seen in chart `chart` of its atlas (0: the main chart): the chart's coordinates, and the
+/// Lagrangian L ∘ Tφ of the chart.
+///
+/// ```
+/// use ddirac::{atlas::InChart, System, systems::SphericalPendulum};
+/// let pendulum = SphericalPendulum::default();
+/// let (main, cap) = (InChart::new(&pendulum, 0), InChart::new(&pendulum, 1));
+/// // The same state in the main chart (θ, φ) and in the lower cap's (x, y).
+/// let (q, v) = ([0.3, 2.5], [0.2, -0.7]); // φ = 2.5: the lower hemisphere
+/// let q_cap = pendulum.from_main(1, &q);
+/// let v_cap = ddirac::atlas::push_forward(&pendulum, &q, &v, 1);
+/// assert!((main.lagrangian(&q, &v) - cap.lagrangian(&q_cap, &v_cap)).abs() < 1e-14);
+/// ```
+#[derive(Debug, Clone)]
+pub struct InChart<S, const N: usize> {
+    system: S,
+    chart: usize,
+    coordinates: [Coordinate; N],
+}
+
+impl<S: System<N>, const N: usize> InChart<S, N> {
+    /// `system` in chart `chart` (0 for the main chart). Panics for a chart the system does not have.
+    pub fn new(system: S, chart: usize) -> Self {
+        let coordinates = if chart == 0 {
+            system.coordinates()
+        } else {
+            system.charts().swap_remove(chart - 1).coordinates
+        };
+        Self { system, chart, coordinates }
+    }
+
+    /// The chart's index (0: the main chart).
+    pub fn chart(&self) -> usize {
+        self.chart
+    }
+
+    /// The system in its main chart.
+    pub fn system(&self) -> &S {
+        &self.system
+    }
+}
+
+impl<S: System<N>, const N: usize> System<N> for InChart<S, N> {
+    fn coordinates(&self) -> [Coordinate; N] {
+        self.coordinates.clone()
+    }
+
+    #[inline(always)]
+    fn lagrangian<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
+        if self.chart == 0 {
+            return self.system.lagrangian(q, v);
+        }
+        // (φ(q), Dφ(q) v) from one evaluation of φ on dual numbers q + ε v.
+        let lifted: [Dual<D>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
+        let image = self.system.to_main(self.chart, &lifted);
+        self.system.lagrangian(&image.map(|x| x.re), &image.map(|x| x.eps))
+    }
+
+    fn exact_solution(&self, q0: &[f64; N], p0: &[f64; N], t: f64) -> Option<[Option<f64>; N]> {
+        (self.chart == 0).then(|| self.system.exact_solution(q0, p0, t)).flatten()
+    }
+
+    fn chart_quality(&self, _chart: usize, q: &[f64; N]) -> f64 {
+        self.system.chart_quality(self.chart, q)
+    }
+}
+
+/// Main-chart coordinates `q` moved by whole turns of their angles to the representative nearest
+/// `near` (the default of [`System::nearest_in_main`]).
+///
+/// ```
+/// use ddirac::{atlas::nearest_turns, CoordinateKind::{Angle, Real}};
+/// let q = nearest_turns([0.1, 0.1], &[6.3, 6.3], &[Angle, Real]);
+/// assert_eq!(q, [0.1 + std::f64::consts::TAU, 0.1]);
+/// ```
+pub fn nearest_turns<const N: usize>(mut q: [f64; N], near: &[f64; N], kinds: &[CoordinateKind; N]) -> [f64; N] {
+    for ((q, near), kind) in q.iter_mut().zip(near).zip(kinds) {
+        if *kind == CoordinateKind::Angle {
+            *q += std::f64::consts::TAU * ((*near - *q) / std::f64::consts::TAU).round();
+        }
+    }
+    q
+}
+
+/// A point of chart `chart` in the main chart (the identity for chart 0).
+fn to_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, q: &[D; N]) -> [D; N] {
+    if chart == 0 {
+        *q
+    } else {
+        system.to_main(chart, q)
+    }
+}
+
+/// A point of the main chart in chart `chart` (the identity for chart 0).
+fn from_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, q: &[D; N]) -> [D; N] {
+    if chart == 0 {
+        *q
+    } else {
+        system.from_main(chart, q)
+    }
+}
+
+/// The coordinates in chart `to` of the point with coordinates `q` in chart `from`.
+pub fn point<S: System<N>, const N: usize>(system: &S, from: usize, to: usize, q: &[f64; N]) -> [f64; N] {
+    if from == to {
+        return *q;
+    }
+    from_main(system, to, &to_main(system, from, q))
+}
+
+/// The velocity `v` at the main-chart point `q` in the coordinates of chart `chart`: Dψ(q) v.
+pub fn push_forward<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N], chart: usize) -> [f64; N] {
+    let lifted: [Dual<f64>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
+    from_main(system, chart, &lifted).map(|x| x.eps)
+}
+
+/// The switch from chart `from` to chart `to` of the state (q, p) of chart `from`: the point in
+/// chart `to`, and the momenta by the cotangent lift p' = Dτ(q')ᵀ p of the transition
+/// τ = ψ_from ∘ φ_to (chart `to` → chart `from`), whose Jacobian is taken by dual numbers at q'.
+/// Returns `None` when the result is not finite (the point is outside chart `to`).
+pub fn transition<S: System<N>, const N: usize>(
+    system: &S,
+    from: usize,
+    to: usize,
+    q: &[f64; N],
+    p: &[f64; N],
+) -> Option<([f64; N], [f64; N])> {
+    let q_to = point(system, from, to, q);
+    let mut p_to = [0.0; N];
+    for (j, slot) in p_to.iter_mut().enumerate() {
+        let seeded: [Dual<f64>; N] = std::array::from_fn(|i| Dual::new(q_to[i], f64::from(u8::from(i == j))));
+        let column = from_main(system, from, &to_main(system, to, &seeded));
+        // Σ_i p_i ∂τ_i/∂q'_j, with exact zeros where τ_i does not depend on q'_j.
+        *slot = column.iter().zip(p).map(|(c, p)| c.eps * p).sum();
+    }
+    q_to.iter().chain(&p_to).all(|x| x.is_finite()).then_some((q_to, p_to))
+}
+
+/// The charts of `system`: the main chart (index 0) and the others, as [`Chart`]s.
+pub fn all_charts<S: System<N>, const N: usize>(system: &S) -> Vec<Chart<N>> {
+    let main = Chart { name: "main".into(), coordinates: system.coordinates() };
+    std::iter::once(main).chain(system.charts()).collect()
+}

@@ -1,0 +1,416 @@
+//! The public stepper: a run over the charts of the system's atlas (paper §6; [`crate::atlas`]).
+//!
+//! Each chart has its own [`ChartStepper`] (its scheme, derivatives, predictor and Newton memory),
+//! prepared when the run first enters the chart. Between steps, where the current chart's measure
+//! has fallen below [`SWITCH_BELOW`], the run moves the state to the best chart by the cotangent lift
+//! ([`atlas::transition`]) and continues there from a first step, with the run's record carried over.
+//! Rows, states and the summary are given in the main chart, with continuous angles. A run without
+//! an atlas, or with `method.atlas = false`, is its main chart's stepper alone, step for step.
+
+use super::progress::Record;
+use super::{ChartStepper, OwnedRow, State, StepReport};
+use crate::atlas::{self, InChart, SWITCH_BELOW};
+use crate::diagnostics::{Row, Summary};
+use crate::integrator::OutputError;
+use crate::{Error, InitialMomentum, Method, Problem, Split, System};
+
+
+/// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
+///
+/// [`Stepper::new`] does what a run does before its first step: it checks the input and the
+/// hypotheses of the method ([`crate::check`]), chooses the unreduced or the reduced equations and
+/// prepares their derivatives. Then [`Stepper::step`] advances from step k to k + 1,
+/// [`Stepper::row`] reports the current state, and [`Stepper::finish`] gives the run's summary.
+/// [`Stepper::state`] saves the state of step k with everything that influences later steps (the
+/// predictor's memory, the kept Newton Jacobian, the energy watch) and the run's record so far;
+/// [`Stepper::restart`] continues from it bit for bit. [`State::new`] gives a cold state from q and p
+/// alone, for starting a prepared stepper from other initial data (an ensemble).
+///
+/// ```
+/// use ddirac::{solve, Method, OutputOptions, Rule, Stepper, systems::ChargedParticle};
+/// let (system, problem) = (ChargedParticle::default(), ChargedParticle::paper_problem(200));
+/// let method = Method { rule: Rule::Left, reduced: true, ..Method::default() };
+///
+/// let mut stepper = Stepper::new(&system, &problem, &method).unwrap();
+/// for _ in 0..120 {
+///     stepper.step().unwrap();
+/// }
+/// let saved = stepper.state();
+/// while !stepper.is_finished() {
+///     stepper.step().unwrap();
+/// }
+/// let q_end = stepper.row().q;
+///
+/// // Another stepper continues from the saved state as the first one did, bit for bit ...
+/// let mut again = Stepper::new(&system, &problem, &method).unwrap();
+/// again.restart(&saved).unwrap();
+/// assert_eq!(again.k(), 120);
+/// while !again.is_finished() {
+///     again.step().unwrap();
+/// }
+/// assert_eq!(again.row().q, q_end);
+/// // ... and both end where `solve` ends.
+/// let solution = solve(&system, &problem, &method, &OutputOptions::default()).unwrap();
+/// assert_eq!(solution.q.last().unwrap().as_slice(), q_end.as_slice());
+/// // Paper, Table 1: N = 200 → 0.01664
+/// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
+/// ```
+pub struct Stepper<S, const N: usize> {
+    system: S,
+    problem: Problem,
+    method: Method,
+    /// The stepper of each chart the run has entered (index: the chart; 0 is the main chart).
+    charts: Vec<Option<ChartStepper<InChart<S, N>, N>>>,
+    current: usize,
+    /// Whether the run switches charts: the system has an atlas and the method asks for it.
+    switching: bool,
+    /// The current point in the main chart, followed step by step outside it (continuous angles).
+    near: [f64; N],
+    split: Split,
+    /// Whether the momentum map is p_g in each chart: it has the main chart's number of group
+    /// coordinates (else it is measured in the main chart after each step there).
+    carries_momentum: Vec<bool>,
+    wrap_angles: bool,
+    switches: usize,
+}
+
+impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
+    /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
+    /// first step: an error for input that a run refuses, or for a hypothesis that fails
+    /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary). With an atlas,
+    /// the run starts in the best chart at the initial point.
+    pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let main = ChartStepper::new(InChart::new(system.clone(), 0), problem, method)?;
+        let extra = system.charts().len();
+        let near = main.progress.config.unwrapped();
+        let split = Split::new(&system.coordinates());
+        let carries_momentum =
+            atlas::all_charts(&system).iter().map(|c| Split::new(&c.coordinates).n_g() == split.n_g()).collect();
+        let mut charts = vec![Some(main)];
+        charts.resize_with(extra + 1, || None);
+        let switching = method.atlas && extra > 0;
+        let mut stepper = Self {
+            system,
+            problem: problem.clone(),
+            method: method.clone(),
+            charts,
+            current: 0,
+            switching,
+            near,
+            split,
+            carries_momentum,
+            wrap_angles: false,
+            switches: 0,
+        };
+        if switching {
+            stepper.choose_chart()?;
+        }
+        Ok(stepper)
+    }
+
+    fn chart(&self) -> &ChartStepper<InChart<S, N>, N> {
+        self.charts[self.current].as_ref().expect("the current chart has a stepper")
+    }
+
+    fn chart_mut(&mut self) -> &mut ChartStepper<InChart<S, N>, N> {
+        self.charts[self.current].as_mut().expect("the current chart has a stepper")
+    }
+
+    /// Report angles wrapped to (−π, π] (in [`Stepper::row`] and the summary's final q) instead of
+    /// continuous; the default is continuous.
+    pub fn set_wrap_angles(&mut self, wrap: bool) {
+        self.wrap_angles = wrap;
+        if let Some(main) = &mut self.charts[0] {
+            main.set_wrap_angles(wrap);
+        }
+    }
+
+    /// The current step index k.
+    pub fn k(&self) -> usize {
+        self.chart().k()
+    }
+
+    /// The current time t_k = k h.
+    pub fn t(&self) -> f64 {
+        self.chart().t()
+    }
+
+    /// The number of steps N of the problem.
+    pub fn steps(&self) -> usize {
+        self.problem.steps
+    }
+
+    /// Whether all N steps are taken.
+    pub fn is_finished(&self) -> bool {
+        self.chart().is_finished()
+    }
+
+    /// The chart of the atlas the run is in (0: the main chart).
+    pub fn current_chart(&self) -> usize {
+        self.current
+    }
+
+    /// Takes step k → k + 1: solves the step equations, checks the new state, watches the energy;
+    /// then, with an atlas, moves to a better chart if the current one has degraded.
+    ///
+    /// Returns [`Error::Interrupted`] when a stop was requested ([`crate::interrupt`]) and an error
+    /// when the run is finished, Newton's method fails, the state becomes non-finite or the energy
+    /// jumps under [`crate::JumpAction::Fail`]. A failed solve or a non-finite state leaves the
+    /// stepper at step k (only its kept Newton Jacobian is dropped; restarting from a saved state
+    /// retries the step bit for bit); an energy jump is reported once the step that shows it is taken.
+    #[inline]
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let report = self.chart_mut().step()?;
+        if self.switching {
+            self.follow()?;
+        }
+        Ok(report)
+    }
+
+    /// After a step with an atlas: the main-chart point followed, the momentum map measured where
+    /// the chart does not carry it, and a switch where the chart has degraded.
+    fn follow(&mut self) -> Result<(), Error> {
+        if self.current != 0 {
+            let (q, p) = self.chart_state();
+            let raw = atlas::point(&self.system, self.current, 0, &q);
+            self.near = self.system.nearest_in_main(raw, &self.near);
+            if !self.carries_momentum[self.current] {
+                if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
+                    let split = self.split.clone();
+                    self.chart_mut().progress.record.drift(&split, &p_main);
+                }
+            }
+        }
+        self.choose_chart()
+    }
+
+    /// The configuration (unwrapped) and canonical momenta of the current chart.
+    fn chart_state(&self) -> ([f64; N], [f64; N]) {
+        let chart = self.chart();
+        let p = chart.p();
+        (chart.progress.config.unwrapped(), p)
+    }
+
+    /// Moves to the chart with the largest measure at the current point when the current chart's
+    /// has fallen below [`SWITCH_BELOW`] and another's is larger.
+    fn choose_chart(&mut self) -> Result<(), Error> {
+        let q = *self.chart().progress.config.base();
+        let quality = self.system.chart_quality(self.current, &q);
+        if quality >= SWITCH_BELOW || quality.is_nan() {
+            return Ok(());
+        }
+        let mut best = (self.current, quality);
+        for chart in (0..self.charts.len()).filter(|&c| c != self.current) {
+            let there = self.system.chart_quality(chart, &atlas::point(&self.system, self.current, chart, &q));
+            if there > best.1 {
+                best = (chart, there);
+            }
+        }
+        if best.0 != self.current {
+            self.switch_to(best.0)?;
+        }
+        Ok(())
+    }
+
+    /// Moves the state of step k to chart `to` by the cotangent lift and continues there from a
+    /// first step, with the run's record.
+    fn switch_to(&mut self, to: usize) -> Result<(), Error> {
+        let k = self.k();
+        let (q, p) = self.chart_state();
+        let Some((mut q_to, p_to)) = atlas::transition(&self.system, self.current, to, &q, &p) else {
+            return Ok(());
+        };
+        if to == 0 {
+            q_to = self.system.nearest_in_main(q_to, &self.near);
+        }
+        if self.charts[to].is_none() {
+            self.charts[to] = Some(self.prepare(to, &q_to, &p_to)?);
+        }
+        let record = self.chart_mut().progress.record.clone();
+        let stepper = self.charts[to].as_mut().expect("prepared");
+        stepper.restart(&State::new(k, q_to, p_to))?;
+        stepper.progress.record = record;
+        if self.current == 0 {
+            self.near = q;
+        }
+        self.current = to;
+        self.switches += 1;
+        Ok(())
+    }
+
+    /// The stepper of chart `chart`, prepared at (q, p) of that chart: the method of the run, without
+    /// the main chart's connection, and unreduced in a chart without group coordinates.
+    fn prepare(&self, chart: usize, q: &[f64; N], p: &[f64; N]) -> Result<ChartStepper<InChart<S, N>, N>, Error> {
+        let in_chart = InChart::new(self.system.clone(), chart);
+        let has_group = Split::new(&in_chart.coordinates()).n_g() > 0;
+        let method = Method { connection: None, reduced: self.method.reduced && has_group, ..self.method.clone() };
+        let problem = Problem { q0: q.to_vec(), initial: InitialMomentum::Momentum(p.to_vec()), ..self.problem.clone() };
+        ChartStepper::new(in_chart, &problem, &method)
+    }
+
+    /// The row of the current step k in the main chart: q_k, p_k, the Hamiltonian, the momentum map
+    /// and the chart the step is in (the discrete energy of step k is known once it is taken:
+    /// [`StepReport::discrete_energy`]). The summary's energy statistics are over the rows taken.
+    pub fn row(&mut self) -> OwnedRow<N> {
+        let current = self.current;
+        let mut row = self.chart_mut().row();
+        if current == 0 {
+            return row;
+        }
+        let (q, p) = self.chart_state();
+        if let Some((_, p_main)) = atlas::transition(&self.system, current, 0, &q, &p) {
+            row.p = p_main;
+        }
+        row.q = if self.wrap_angles { wrapped(&self.system, self.near) } else { self.near };
+        row.momentum_map = [0.0; N];
+        row.momentum_map.iter_mut().zip(self.split.momentum_map(&row.p)).for_each(|(slot, j)| *slot = j);
+        row.n_g = self.split.n_g();
+        row.chart = current;
+        row
+    }
+
+    /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
+    /// (what [`crate::integrate`] reports), each with the discrete energy of its step. The same
+    /// steps and rows as [`Stepper::step`] and [`Stepper::row`]. `watch` is called with k every
+    /// [`crate::WATCH_STEPS`] steps (from k = 0). After an error the stepper stays at the step that
+    /// failed, as after [`Stepper::step`].
+    pub fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<(), Error> {
+        if !self.switching {
+            return self.chart_mut().run_to_end(every, observer, watch);
+        }
+        let (mut until_report, mut until_watch) = (0, 0);
+        while !self.is_finished() {
+            if until_watch == 0 {
+                watch(self.k()).map_err(Error::Output)?;
+                until_watch = crate::integrator::WATCH_STEPS;
+            }
+            until_watch -= 1;
+            let row = (until_report == 0).then(|| self.row());
+            until_report = if until_report == 0 { every - 1 } else { until_report - 1 };
+            let step = self.step()?;
+            if let Some(mut row) = row {
+                row.discrete_energy = Some(step.discrete_energy);
+                observer(&row.as_row()).map_err(Error::Output)?;
+            }
+        }
+        let row = self.row();
+        observer(&row.as_row()).map_err(Error::Output)
+    }
+
+    /// The state of step k in the main chart, with all that a stepper of the same system, method and
+    /// step needs to continue from it bit for bit (the chart it is in too).
+    pub fn state(&self) -> State<N> {
+        let mut state = self.chart().state();
+        if self.current != 0 {
+            let (q, p) = self.chart_state();
+            if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
+                state.p = p_main;
+            }
+            state.q = self.near;
+        }
+        if let Some(memory) = &mut state.memory {
+            memory.chart = self.current;
+            memory.near = self.near;
+        }
+        state
+    }
+
+    /// Continues from `state`: from a state taken from a stepper of the same system, method and step
+    /// exactly as that stepper would have continued (its record too, so that the summary covers the
+    /// whole run); from a cold state as on a first step from (q, p), with a new record (and, with an
+    /// atlas, in the best chart there). The derivatives prepared by [`Stepper::new`] are kept. A
+    /// compiled closed-form step holds the conserved momenta μ of the problem as constants: from a
+    /// state with another μ the steps are solved by Newton's method on the same equations instead.
+    ///
+    /// An error for a state beyond the problem's last step, a warm state from another method or
+    /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
+    /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
+    /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
+    /// are not tested again for a cold state.
+    pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
+        let Some(memory) = &state.memory else {
+            self.charts[0].as_mut().expect("the main chart has a stepper").restart(state)?;
+            (self.current, self.near) = (0, state.q);
+            return if self.switching { self.choose_chart() } else { Ok(()) };
+        };
+        let chart = memory.chart;
+        if chart >= self.charts.len() {
+            let why = format!("it was taken in chart {chart}, which this system does not have");
+            return Err(Error::Invalid { what: crate::Input::State, why });
+        }
+        if self.charts[chart].is_none() {
+            let Some((q, p)) = atlas::transition(&self.system, 0, chart, &state.q, &state.p) else {
+                let why = format!("its point is outside chart {chart}");
+                return Err(Error::Invalid { what: crate::Input::State, why });
+            };
+            self.charts[chart] = Some(self.prepare(chart, &q, &p)?);
+        }
+        self.charts[chart].as_mut().expect("prepared").restart(state)?;
+        (self.current, self.near) = (chart, memory.near);
+        Ok(())
+    }
+
+    /// Prepares this stepper for `problem` as [`Stepper::new`] prepares a new stepper of the same
+    /// system and method, keeping the derivatives when they serve the problem unchanged (an
+    /// ensemble's members that differ in initial data trace and compile once): `Ok(true)` then, and
+    /// the run that follows is that of a new stepper, bit for bit. `Ok(false)` when a new stepper
+    /// might differ — another step size or number of steps, a compiled closed-form step (it holds the
+    /// first step's conserved momenta), a trace with guards, compiled programs that fail their check
+    /// against dual numbers at the new first step, dual numbers chosen at the first step — and the
+    /// caller makes a new stepper. An error is the one [`Stepper::new`] gives for `problem` (its input
+    /// and the check of the method's hypotheses near its initial data are tested anew). The main
+    /// chart's derivatives are what is kept; the other charts are prepared anew when entered.
+    pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
+        let main = self.charts[0].as_mut().expect("the main chart has a stepper");
+        if !main.renew(problem)? {
+            return Ok(false);
+        }
+        self.near = main.progress.config.unwrapped();
+        self.problem = problem.clone();
+        self.charts.iter_mut().skip(1).for_each(|chart| *chart = None);
+        (self.current, self.switches) = (0, 0);
+        if self.switching {
+            self.choose_chart()?;
+        }
+        Ok(true)
+    }
+
+    /// The summary of the run up to the current step: the energy watch's last verdict (an error
+    /// under [`crate::JumpAction::Fail`] when the energy jumped and did not come back), final state
+    /// in the main chart, statistics, Newton counts, chart switches and warnings.
+    pub fn finish(mut self) -> Result<Summary, Error> {
+        self.summary()
+    }
+
+    /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
+    /// restarted.
+    pub fn summary(&mut self) -> Result<Summary, Error> {
+        let mut summary = self.chart_mut().summary()?;
+        summary.chart_switches = self.switches;
+        if self.current != 0 {
+            let state = self.state();
+            summary.coordinates = self.system.coordinates().iter().map(|c| c.name.clone()).collect();
+            summary.final_q = if self.wrap_angles { wrapped(&self.system, state.q) } else { state.q }.to_vec();
+            summary.final_p = state.p.to_vec();
+            let Record { start: (k0, q0, p0), .. } = &self.chart().progress.record;
+            let t = (state.k - k0) as f64 * self.problem.step;
+            summary.reference_error = self.system.exact_solution(q0, p0, t).and_then(|exact| {
+                let terms: Vec<f64> =
+                    exact.iter().zip(&state.q).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+            });
+        }
+        Ok(summary)
+    }
+}
+
+/// A main-chart configuration with its angles wrapped to (−π, π].
+fn wrapped<S: System<N>, const N: usize>(system: &S, q: [f64; N]) -> [f64; N] {
+    let kinds = system.coordinates().map(|c| c.kind);
+    std::array::from_fn(|i| if kinds[i] == crate::CoordinateKind::Angle { crate::chart::wrap(q[i]) } else { q[i] })
+}
