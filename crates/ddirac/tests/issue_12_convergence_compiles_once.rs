@@ -62,7 +62,7 @@ fn four_step_sizes_and_a_parameter_sweep_compile_once() {
         let built_in = DoubleSphericalPendulum { m2: mass, ..DoubleSphericalPendulum::default() };
         let problem =
             Problem::new(0.01, 100, vec![0.0, 2.25, 2.0, 3.0], InitialMomentum::Momentum(vec![0.0, 0.0, 1.0, 1.0]));
-        let method = Method { differentiation: Differentiation::Dual, ..Method::default() };
+        let method = Method { differentiation: Differentiation::Dual, atlas: false, ..Method::default() };
         let dual = solve(&built_in, &problem, &method, &OutputOptions::default()).unwrap();
         for (a, b) in text.summary.final_q.iter().zip(&dual.summary.final_q) {
             assert!((a - b).abs() < 1e-10, "m2 = {mass}: {a} vs {b}");

@@ -1,0 +1,124 @@
+//! The atlas of charts (paper §6): a chart switch is symplectic and carries the momentum map over
+//! exactly, switching back and forth costs no digits, and the double spherical pendulum of §7.2 runs
+//! 10⁶ steps of h = 0.01 with its energy error bounded.
+
+use std::f64::consts::PI;
+
+use ddirac::systems::{DoubleSphericalPendulum, SphericalPendulum};
+use ddirac::{atlas, InitialMomentum, Method, Problem, State, Stepper, System};
+
+/// The one-step map (q, p) ↦ (q₁, p₁) in the main chart, from a cold state: the stepper chooses its
+/// chart at (q, p), steps, and reports in the main chart.
+fn one_step<S: System<N> + Clone, const N: usize>(stepper: &mut Stepper<S, N>, x: &[f64]) -> Vec<f64> {
+    let (q, p) = (x[..N].try_into().unwrap(), x[N..].try_into().unwrap());
+    stepper.restart(&State::new(0, q, p)).unwrap();
+    stepper.step().unwrap();
+    let row = stepper.row();
+    row.q.iter().chain(&row.p).copied().collect()
+}
+
+/// max |MᵀJM − J| of the finite-difference Jacobian M of the one-step map at x (central
+/// differences of relative size `eps`), and the chart the step was taken in.
+fn symplecticity<S: System<N> + Clone, const N: usize>(system: S, x: [f64; 8], n: usize, method: &Method) -> (f64, usize) {
+    let x = &x[..2 * n];
+    let problem = Problem::new(0.01, 10, x[..n].to_vec(), InitialMomentum::Momentum(x[n..].to_vec()));
+    let mut stepper = Stepper::new(system, &problem, method).unwrap();
+    one_step(&mut stepper, x);
+    let chart = stepper.current_chart();
+    let columns: Vec<Vec<f64>> = (0..2 * n)
+        .map(|j| {
+            let eps = 1e-6 * x[j].abs().max(1.0);
+            let (mut plus, mut minus) = (x.to_vec(), x.to_vec());
+            plus[j] += eps;
+            minus[j] -= eps;
+            let (a, b) = (one_step(&mut stepper, &plus), one_step(&mut stepper, &minus));
+            a.iter().zip(&b).map(|(a, b)| (a - b) / (2.0 * eps)).collect()
+        })
+        .collect();
+    let m = |i: usize, j: usize| columns[j][i];
+    let omega = |i: usize, j: usize| -> f64 {
+        (0..n).map(|k| m(k, i) * m(n + k, j) - m(n + k, i) * m(k, j)).sum::<f64>()
+    };
+    let j_entry = |i: usize, j: usize| -> f64 {
+        if i < n && j == i + n {
+            1.0
+        } else if i >= n && i == j + n {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    let worst = (0..2 * n).flat_map(|i| (0..2 * n).map(move |j| (i, j))).fold(0.0f64, |w, (i, j)| {
+        w.max((omega(i, j) - j_entry(i, j)).abs())
+    });
+    (worst, chart)
+}
+
+#[test]
+fn a_step_in_another_chart_is_symplectic_in_the_main_chart() {
+    for reduced in [false, true] {
+        let method = Method { reduced, ..Method::default() };
+        // 0.3 rad from the lower pole: the run takes its step in the lower cap.
+        let (worst, chart) =
+            symplecticity(SphericalPendulum::default(), [0.4, PI - 0.3, 0.0, 0.0, 0.05, 0.7, 0.0, 0.0], 2, &method);
+        eprintln!("spherical pendulum, reduced {reduced}: max |MᵀJM − J| = {worst:.2e} (chart {chart})");
+        assert_eq!(chart, 1);
+        assert!(worst < 1e-8, "{worst:e}");
+    }
+}
+
+#[test]
+fn a_switch_carries_the_momentum_map_exactly_and_back_and_forth_costs_no_digits() {
+    let system = DoubleSphericalPendulum::default();
+    let (q, p) = ([0.3, PI - 0.2, 0.5, 2.0], [1234.5, -200.25, 3000.125, 150.0]);
+    let (mut q1, mut p1) = (q, p);
+    for _ in 0..50_000 {
+        let (qa, pa) = atlas::transition(&system, 0, 1, &q1, &p1).unwrap();
+        // The group coordinate of chart 1 is θ2; its momentum is the momentum map, exactly.
+        assert_eq!(pa[0], p[0]);
+        let (qb, pb) = atlas::transition(&system, 1, 0, &qa, &pa).unwrap();
+        (q1, p1) = (system.nearest_in_main(qb, &q1), pb);
+        assert_eq!(p1[0], p[0]);
+    }
+    let dq = q.iter().zip(&q1).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let dp = p.iter().zip(&p1).fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / 3000.0));
+    eprintln!("after 10⁵ switches: |Δq| = {dq:.2e}, |Δp|/|p| = {dp:.2e}");
+    // A switch costs a few units of round-off, as a step does: 10⁵ of them (measured 2.5e-11 in p)
+    // stay far from a digit of the Newton tolerance.
+    assert!(dq < 1e-12 && dp < 1e-10, "{dq:e} {dp:e}");
+}
+
+/// The first finding: at h = 0.01 every variant failed after 1.4·10⁵–8.4·10⁵ steps, its energy
+/// jumping at close pole passages. With the atlas, 10⁶ steps keep |ΔH/H₀| below 10⁻⁴ at every step
+/// (measured 2.6e-7), and the reduced run equals the unreduced one to what round-off allows in this
+/// motion (the paper's run already amplifies round-off 10⁵×; measured 1.3e-8 rad over the run).
+#[test]
+fn the_double_spherical_pendulum_runs_a_million_steps_with_bounded_energy() {
+    let system = DoubleSphericalPendulum::default();
+    let problem = Problem { steps: 1_000_000, ..DoubleSphericalPendulum::paper_problem(10_000) };
+    let mut rows = vec![];
+    for reduced in [false, true] {
+        let mut stepper = Stepper::new(&system, &problem, &Method { reduced, ..Method::default() }).unwrap();
+        let h0 = stepper.row().energy;
+        let (mut worst, mut sampled) = (0.0f64, vec![]);
+        while !stepper.is_finished() {
+            stepper.step().unwrap();
+            let row = stepper.row();
+            worst = worst.max(((row.energy - h0) / h0).abs());
+            if row.k % 1000 == 0 {
+                sampled.push(row.q);
+            }
+        }
+        let summary = stepper.finish().unwrap();
+        eprintln!(
+            "reduced {reduced}: max |ΔH/H0| = {worst:.3e}, {} chart switches, {} subdivided steps",
+            summary.chart_switches, summary.newton.subdivided_steps
+        );
+        assert!(worst <= 1e-4, "reduced {reduced}: {worst:e}");
+        assert!(summary.chart_switches > 0);
+        rows.push(sampled);
+    }
+    let apart = rows[0].iter().flatten().zip(rows[1].iter().flatten()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    eprintln!("reduced against unreduced: {apart:.2e} rad");
+    assert!(apart < 1e-6, "{apart:e}");
+}
