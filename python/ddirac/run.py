@@ -19,6 +19,7 @@ METHOD_KEYS = {
     "energy_jump_threshold": None,
     "order": 2,
     "composition": None,
+    "atlas": True,
 }
 
 # Largest relative deviation of duration / step from a whole number of steps.
@@ -100,7 +101,8 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     ``reuse_jacobian``, ``derivatives`` (``auto``, ``compiled``, ``dual``), ``check_invariance``,
     ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``, ``order`` (2, 4,
     6 or 8: orders above 2 compose the basic step of a symmetric rule, midpoint or trapezoid) and
-    ``composition`` (its coefficient set: ``suzuki``, ``kahan-li`` or ``triple-jump``). Every
+    ``composition`` (its coefficient set: ``suzuki``, ``kahan-li`` or ``triple-jump``) and ``atlas``
+    (``False`` keeps every step in the main chart of a system with an atlas of charts). Every
     ``every``-th row is kept (and the last).
 
     The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.
@@ -168,6 +170,7 @@ def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, 
         "energy_jump_threshold": None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
         "order": _count(keys["order"], "order"),
         "composition": None if keys["composition"] is None else str(keys["composition"]),
+        "atlas": bool(keys["atlas"]),
     }
     return {"q0": q0, "p0": p0, "v0": v0, "step": h, "steps": n, "method": keys}
 

@@ -67,13 +67,16 @@ impl Formats {
     }
 }
 
-/// The column names: `t, <q names>, p_<name>..., energy, discrete_energy, momentum_<group name>...`.
-pub fn columns(coordinates: &[String], group: &[String]) -> Vec<String> {
+/// The column names: `t, <q names>, p_<name>..., energy, discrete_energy, momentum_<group name>...`,
+/// and `chart` (the chart of the atlas each step was in, 0 for the main chart) when the run switches
+/// charts.
+pub fn columns(coordinates: &[String], group: &[String], chart: bool) -> Vec<String> {
     std::iter::once("t".to_owned())
         .chain(coordinates.iter().cloned())
         .chain(coordinates.iter().map(|c| format!("p_{c}")))
         .chain(["energy".to_owned(), "discrete_energy".to_owned()])
         .chain(group.iter().map(|g| format!("momentum_{g}")))
+        .chain(chart.then(|| "chart".to_owned()))
         .collect()
 }
 
@@ -99,6 +102,7 @@ pub struct Trajectory {
     npy: Vec<(npy::Column, PathBuf)>,
     field: String,
     dir: PathBuf,
+    chart: bool,
 }
 
 impl Trajectory {
@@ -112,8 +116,14 @@ impl Trajectory {
     ///
     /// The `.npy` files are named after the columns, which must be distinct and made of ASCII letters,
     /// digits and `_` (as the names of built-in and expression coordinates are).
-    pub fn create(dir: &Path, coordinates: &[String], group: &[String], formats: Formats) -> Result<Self, FileError> {
-        let names = columns(coordinates, group);
+    pub fn create(
+        dir: &Path,
+        coordinates: &[String],
+        group: &[String],
+        chart: bool,
+        formats: Formats,
+    ) -> Result<Self, FileError> {
+        let names = columns(coordinates, group, chart);
         let csv = match formats.csv {
             true => {
                 let path = dir.join(Self::CSV);
@@ -140,7 +150,7 @@ impl Trajectory {
             }
             false => vec![],
         };
-        Ok(Self { csv, npy, field: String::new(), dir: dir.to_owned() })
+        Ok(Self { csv, npy, field: String::new(), dir: dir.to_owned(), chart })
     }
 
     /// Appends one row. The last row has an empty `discrete_energy` in the CSV and NaN in
@@ -151,6 +161,7 @@ impl Trajectory {
                 .chain(row.q.iter().chain(row.p).map(|&v| Some(v)))
                 .chain([Some(row.energy), row.discrete_energy])
                 .chain(row.momentum_map.iter().map(|&v| Some(v)))
+                .chain(self.chart.then_some(Some(row.chart as f64)))
         };
         if let Some((writer, path)) = &mut self.csv {
             for value in numbers() {
@@ -246,14 +257,22 @@ mod tests {
         dir
     }
 
-    const ROW: Row<'static> =
-        Row { k: 0, t: 0.1, q: &[1.0 / 3.0], p: &[2.0], energy: 3.0, discrete_energy: None, momentum_map: &[2.0], chart: 0 };
+    const ROW: Row<'static> = Row {
+        k: 0,
+        t: 0.1,
+        q: &[1.0 / 3.0],
+        p: &[2.0],
+        energy: 3.0,
+        discrete_energy: None,
+        momentum_map: &[2.0],
+        chart: 0,
+    };
 
     #[test]
     fn the_csv_holds_the_header_and_the_rows() {
         let dir = temp_dir("csv");
         let names = ["q".to_owned()];
-        let mut t = Trajectory::create(&dir, &names, &names, Formats::of(&[Format::Csv])).unwrap();
+        let mut t = Trajectory::create(&dir, &names, &names, false, Formats::of(&[Format::Csv])).unwrap();
         t.write(&ROW).unwrap();
         assert_eq!(t.finish().unwrap(), [PathBuf::from("trajectory.csv")]);
         assert!(!dir.join("npy").exists());
@@ -268,7 +287,7 @@ mod tests {
     fn npy_files_hold_the_row_count_and_nan_for_the_last_discrete_energy() {
         let dir = temp_dir("npy");
         let names = ["q".to_owned()];
-        let mut t = Trajectory::create(&dir, &names, &names, Formats::of(&[Format::Npy])).unwrap();
+        let mut t = Trajectory::create(&dir, &names, &names, false, Formats::of(&[Format::Npy])).unwrap();
         t.write(&ROW).unwrap();
         t.write(&ROW).unwrap();
         let written = t.finish().unwrap();
@@ -290,7 +309,7 @@ mod tests {
         let npy = Formats::of(&[Format::Npy]);
         for bad in ["energy", "a/b", "..", ""] {
             let names = [bad.to_owned()];
-            let error = Trajectory::create(&dir, &names, &[], npy).err().expect(bad);
+            let error = Trajectory::create(&dir, &names, &[], false, npy).err().expect(bad);
             assert_eq!(error.source.kind(), io::ErrorKind::InvalidInput, "{bad}");
             assert_eq!(error.path, dir.join("npy"));
         }

@@ -32,6 +32,7 @@ pub struct SummaryJson<'a> {
     wall_seconds: f64,
     total_wall_seconds: f64,
     reference_error: Option<f64>,
+    chart_switches: usize,
     warnings: Vec<WarningJson>,
 }
 
@@ -83,6 +84,7 @@ struct MethodJson {
     order: u8,
     composition: &'static str,
     stages: usize,
+    atlas: bool,
 }
 
 #[derive(Serialize)]
@@ -171,6 +173,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             order: method.composition.order(),
             composition: method.composition.name(),
             stages: method.composition.coefficients().len(),
+            atlas: method.atlas && !plan.system.charts().is_empty(),
             energy_jump_threshold: method.energy_jump.threshold,
         },
         steps: summary.steps,
@@ -198,6 +201,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         wall_seconds: summary.wall_seconds,
         total_wall_seconds: total_seconds,
         reference_error: summary.reference_error,
+        chart_switches: summary.chart_switches,
         warnings: summary.warnings.iter().map(WarningJson::new).collect(),
     }
 }

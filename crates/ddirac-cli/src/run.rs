@@ -144,7 +144,8 @@ pub fn write_run(
     let coordinates = plan.system.coordinates();
     let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
     let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
-    let mut trajectory = Trajectory::create(staging, &names, &group, formats)?;
+    let switching = plan.method.atlas && !plan.system.charts().is_empty();
+    let mut trajectory = Trajectory::create(staging, &names, &group, switching, formats)?;
     let system = plan.system.as_ref();
     // The exact solution goes with the CSV: a run asked for NumPy files only writes no CSV at all.
     let mut exact = formats.csv.then(|| ExactFile::new(staging, system, &plan.problem.q0, plan.output.wrap_angles));

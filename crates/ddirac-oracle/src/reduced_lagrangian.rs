@@ -89,11 +89,7 @@ pub fn ld_partials<S: System<N>, const N: usize>(
 
 /// l₊ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·); the
 /// group entries of b are not read.
-pub(crate) fn l_plus<S, D, const N: usize>(
-    reduction: &ReducedLagrangian<S>,
-    a: &[D; N],
-    b: &[D; N],
-) -> Result<D, Error>
+pub(crate) fn l_plus<S, D, const N: usize>(reduction: &ReducedLagrangian<S>, a: &[D; N], b: &[D; N]) -> Result<D, Error>
 where
     S: System<N>,
     D: Scalar,
@@ -118,12 +114,7 @@ where
 }
 
 /// A shape vector and a group vector at the coordinates' positions (missing entries `zero`).
-pub(crate) fn pack<S, D: Copy, const N: usize>(
-    reduction: &ReducedLagrangian<S>,
-    x: &[D],
-    g: &[D],
-    zero: D,
-) -> [D; N] {
+pub(crate) fn pack<S, D: Copy, const N: usize>(reduction: &ReducedLagrangian<S>, x: &[D], g: &[D], zero: D) -> [D; N] {
     let mut out = [zero; N];
     reduction.split.shape.iter().zip(x).for_each(|(&i, &v)| out[i] = v);
     reduction.split.group.iter().zip(g).for_each(|(&i, &v)| out[i] = v);

@@ -103,11 +103,7 @@ fn check_plus<S: System<4>>(reduction: &ReducedLagrangian<S>, k: &[Vec<f64>], po
 
 /// Checks every step of a (−) run: membership in [D̂^{d−}], the corrected general form, and the
 /// smallest residual of the printed general form over all steps relative to that step's momenta.
-fn check_minus<S: System<4>>(
-    reduction: &ReducedLagrangian<S>,
-    k: &[Vec<f64>],
-    points: &[Point],
-) -> (f64, f64, f64) {
+fn check_minus<S: System<4>>(reduction: &ReducedLagrangian<S>, k: &[Vec<f64>], points: &[Point]) -> (f64, f64, f64) {
     let scale = scale_of(points);
     let (mut dirac, mut corrected, mut printed_min) = (0.0f64, 0.0f64, f64::INFINITY);
     for pair in points.windows(2) {

@@ -32,6 +32,7 @@ pub(crate) struct MethodKeys {
     energy_jump_threshold: Option<f64>,
     order: Option<i64>,
     composition: Option<String>,
+    atlas: bool,
 }
 
 impl MethodKeys {
@@ -82,6 +83,7 @@ impl MethodKeys {
             differentiation,
             energy_jump,
             composition,
+            atlas: self.atlas,
         })
     }
 }
@@ -349,6 +351,7 @@ fn summary_dict<'py>(
     m.set_item("order", method.composition.order())?;
     m.set_item("composition", method.composition.name())?;
     m.set_item("stages", method.composition.coefficients().len())?;
+    m.set_item("atlas", method.atlas)?;
     d.set_item("method", m)?;
     d.set_item("steps", s.steps)?;
     d.set_item("step", s.step)?;

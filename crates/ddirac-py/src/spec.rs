@@ -109,6 +109,7 @@ impl LoadedSpec {
         d.set_item("energy_jump_threshold", m.energy_jump.threshold)?;
         d.set_item("order", m.composition.order())?;
         d.set_item("composition", m.composition.name())?;
+        d.set_item("atlas", m.atlas)?;
         Ok(d)
     }
 

@@ -2,7 +2,7 @@
 //! compatible chart and changing to another one whenever it is necessary".
 //!
 //! A system declares its other charts through [`System::charts`], with the maps φ to the main chart
-//! and ψ = φ⁻¹ from it ([`System::to_main`], [`System::from_main`]) and a measure of where each chart
+//! and ψ = φ⁻¹ from it ([`System::chart_to_main`], [`System::main_to_chart`]) and a measure of where each chart
 //! is good ([`System::chart_quality`]). The Lagrangian is written once, in the main chart; in chart c
 //! it is L ∘ Tφ_c ([`InChart`]): L(φ(q'), Dφ(q') v'), with Dφ(q') v' from a dual number over the
 //! scalar, so that dual numbers, the tracer and compiled code all apply. Each chart is a
@@ -33,7 +33,7 @@ pub const SWITCH_BELOW: f64 = 0.5;
 /// let (main, cap) = (InChart::new(&pendulum, 0), InChart::new(&pendulum, 1));
 /// // The same state in the main chart (θ, φ) and in the lower cap's (x, y).
 /// let (q, v) = ([0.3, 2.5], [0.2, -0.7]); // φ = 2.5: the lower hemisphere
-/// let q_cap = pendulum.from_main(1, &q);
+/// let q_cap = pendulum.main_to_chart(1, &q);
 /// let v_cap = ddirac::atlas::push_forward(&pendulum, &q, &v, 1);
 /// assert!((main.lagrangian(&q, &v) - cap.lagrangian(&q_cap, &v_cap)).abs() < 1e-14);
 /// ```
@@ -47,11 +47,8 @@ pub struct InChart<S, const N: usize> {
 impl<S: System<N>, const N: usize> InChart<S, N> {
     /// `system` in chart `chart` (0 for the main chart). Panics for a chart the system does not have.
     pub fn new(system: S, chart: usize) -> Self {
-        let coordinates = if chart == 0 {
-            system.coordinates()
-        } else {
-            system.charts().swap_remove(chart - 1).coordinates
-        };
+        let coordinates =
+            if chart == 0 { system.coordinates() } else { system.charts().swap_remove(chart - 1).coordinates };
         Self { system, chart, coordinates }
     }
 
@@ -78,7 +75,7 @@ impl<S: System<N>, const N: usize> System<N> for InChart<S, N> {
         }
         // (φ(q), Dφ(q) v) from one evaluation of φ on dual numbers q + ε v.
         let lifted: [Dual<D>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
-        let image = self.system.to_main(self.chart, &lifted);
+        let image = self.system.chart_to_main(self.chart, &lifted);
         self.system.lagrangian(&image.map(|x| x.re), &image.map(|x| x.eps))
     }
 
@@ -113,7 +110,7 @@ fn to_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, q:
     if chart == 0 {
         *q
     } else {
-        system.to_main(chart, q)
+        system.chart_to_main(chart, q)
     }
 }
 
@@ -122,7 +119,7 @@ fn from_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, 
     if chart == 0 {
         *q
     } else {
-        system.from_main(chart, q)
+        system.main_to_chart(chart, q)
     }
 }
 

@@ -15,6 +15,9 @@ pub trait DynSystem: Send + Sync {
     /// The coordinates, in order.
     fn coordinates(&self) -> Vec<Coordinate>;
 
+    /// The names of the other charts of the system's atlas; see [`System::charts`].
+    fn charts(&self) -> Vec<String>;
+
     /// Runs a problem; see [`crate::integrate`].
     fn integrate(
         &self,
@@ -65,6 +68,10 @@ pub struct Erased<S, const N: usize>(pub S);
 impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
     fn coordinates(&self) -> Vec<Coordinate> {
         self.0.coordinates().to_vec()
+    }
+
+    fn charts(&self) -> Vec<String> {
+        self.0.charts().into_iter().map(|c| c.name).collect()
     }
 
     fn integrate(

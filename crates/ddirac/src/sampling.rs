@@ -69,11 +69,7 @@ pub fn sample<S: System<N>, const N: usize>(
 
 /// Up to [`WANTED`] pairs near (q, q + dq) where L_d and its gradient are finite, the first step
 /// (q, q + dq) first when it is one of them. Fewer are returned only when no more could be found.
-pub fn near<S: System<N>, const N: usize>(
-    ld: &DiscreteLagrangian<S>,
-    q: &[f64; N],
-    dq: &[f64; N],
-) -> Vec<Sample<N>> {
+pub fn near<S: System<N>, const N: usize>(ld: &DiscreteLagrangian<S>, q: &[f64; N], dq: &[f64; N]) -> Vec<Sample<N>> {
     let mut uniform = Uniform::new();
     let first_step = std::array::from_fn(|i| q[i] + dq[i]);
     let mut samples: Vec<Sample<N>> = sample(ld, *q, first_step).into_iter().collect();

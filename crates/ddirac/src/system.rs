@@ -106,13 +106,13 @@ pub trait System<const N: usize> {
 
     /// The main chart's coordinates of the point whose coordinates in chart `chart` (≥ 1) are `q`:
     /// the map φ of the chart, generic over the scalar (the chart's Lagrangian is L ∘ Tφ).
-    fn to_main<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
+    fn chart_to_main<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
         *q
     }
 
     /// The coordinates in chart `chart` (≥ 1) of the point whose main-chart coordinates are `q`: the
     /// inverse ψ = φ⁻¹, generic over the scalar.
-    fn from_main<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
+    fn main_to_chart<D: Scalar>(&self, _chart: usize, q: &[D; N]) -> [D; N] {
         *q
     }
 
@@ -231,13 +231,13 @@ impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
     }
 
     #[inline(always)]
-    fn to_main<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
-        (**self).to_main(chart, q)
+    fn chart_to_main<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        (**self).chart_to_main(chart, q)
     }
 
     #[inline(always)]
-    fn from_main<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
-        (**self).from_main(chart, q)
+    fn main_to_chart<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        (**self).main_to_chart(chart, q)
     }
 
     fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {

@@ -19,7 +19,12 @@ fn one_step<S: System<N> + Clone, const N: usize>(stepper: &mut Stepper<S, N>, x
 
 /// max |MᵀJM − J| of the finite-difference Jacobian M of the one-step map at x (central
 /// differences of relative size `eps`), and the chart the step was taken in.
-fn symplecticity<S: System<N> + Clone, const N: usize>(system: S, x: [f64; 8], n: usize, method: &Method) -> (f64, usize) {
+fn symplecticity<S: System<N> + Clone, const N: usize>(
+    system: S,
+    x: [f64; 8],
+    n: usize,
+    method: &Method,
+) -> (f64, usize) {
     let x = &x[..2 * n];
     let problem = Problem::new(0.01, 10, x[..n].to_vec(), InitialMomentum::Momentum(x[n..].to_vec()));
     let mut stepper = Stepper::new(system, &problem, method).unwrap();
@@ -36,9 +41,8 @@ fn symplecticity<S: System<N> + Clone, const N: usize>(system: S, x: [f64; 8], n
         })
         .collect();
     let m = |i: usize, j: usize| columns[j][i];
-    let omega = |i: usize, j: usize| -> f64 {
-        (0..n).map(|k| m(k, i) * m(n + k, j) - m(n + k, i) * m(k, j)).sum::<f64>()
-    };
+    let omega =
+        |i: usize, j: usize| -> f64 { (0..n).map(|k| m(k, i) * m(n + k, j) - m(n + k, i) * m(k, j)).sum::<f64>() };
     let j_entry = |i: usize, j: usize| -> f64 {
         if i < n && j == i + n {
             1.0
@@ -48,9 +52,9 @@ fn symplecticity<S: System<N> + Clone, const N: usize>(system: S, x: [f64; 8], n
             0.0
         }
     };
-    let worst = (0..2 * n).flat_map(|i| (0..2 * n).map(move |j| (i, j))).fold(0.0f64, |w, (i, j)| {
-        w.max((omega(i, j) - j_entry(i, j)).abs())
-    });
+    let worst = (0..2 * n)
+        .flat_map(|i| (0..2 * n).map(move |j| (i, j)))
+        .fold(0.0f64, |w, (i, j)| w.max((omega(i, j) - j_entry(i, j)).abs()));
     (worst, chart)
 }
 

@@ -17,8 +17,13 @@ fn the_sub_steps_of_a_composition_share_one_compile() {
         let mut compiles = vec![];
         for composition in [Composition::KahanLi17, Composition::Suzuki5, Composition::Basic] {
             let before = native_compilations();
-            let method =
-                Method { reduced, composition, differentiation: Differentiation::Compiled, atlas: false, ..Method::default() };
+            let method = Method {
+                reduced,
+                composition,
+                differentiation: Differentiation::Compiled,
+                atlas: false,
+                ..Method::default()
+            };
             let summary = solve(&system, &problem, &method, &OutputOptions::default()).unwrap().summary;
             assert!(matches!(summary.derivatives, DerivativePath::Compiled { closed_form: None, .. }));
             compiles.push(native_compilations() - before);

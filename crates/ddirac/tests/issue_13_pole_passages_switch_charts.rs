@@ -83,7 +83,12 @@ fn pole_passages_are_as_accurate_as_runs_far_from_the_pole() {
                  energy {:.2e}; momentum map {:.1e}; {} switches",
                 coarse.error, fine.error, coarse.energy, coarse.momentum, coarse.switches
             );
-            assert!(coarse.error <= far.error, "L_z = {l_z:e}: error {:e} against {:e} far from the pole", coarse.error, far.error);
+            assert!(
+                coarse.error <= far.error,
+                "L_z = {l_z:e}: error {:e} against {:e} far from the pole",
+                coarse.error,
+                far.error
+            );
             assert!((order - 2.0).abs() < 0.1, "L_z = {l_z:e}: order {order}");
             assert!(coarse.energy < 1e-4 && fine.energy < 1e-5, "L_z = {l_z:e}: energy {:e}", coarse.energy);
             // In the polar caps the steps are unreduced; the momentum map is conserved by the discrete

@@ -11,6 +11,7 @@
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
 //!               tolerance = 1e-12  max_iterations = 50  jacobian = "reuse"  check_invariance = true
 //!               derivatives = "auto"  on_energy_jump = "warn"  energy_jump_threshold = 1e-3
+//!               order = 2  composition = "suzuki"  atlas = true
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
@@ -214,6 +215,9 @@ pub struct MethodSpec {
     /// The coefficient set of a composition: `suzuki` (order 4's default), `kahan-li` (order 6's and
     /// 8's default) or `triple-jump` (orders 4, 6, 8).
     pub composition: Option<Spanned<String>>,
+    /// Switch between the charts of the system's atlas where the current one degrades (default
+    /// true; without an atlas there is nothing to switch).
+    pub atlas: Option<Spanned<bool>>,
 }
 
 /// `[time]`: any two of step, steps, duration (all three if consistent).

@@ -286,7 +286,7 @@ fn distinct_columns(
 ) -> Result<(), Box<SpecError>> {
     let names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
     let group: Vec<String> = coordinates.iter().filter(|c| c.role == Role::Group).map(|c| c.name.clone()).collect();
-    let columns = crate::output::columns(&names, &group);
+    let columns = crate::output::columns(&names, &group, true);
     let n = names.len();
     let span_of = |name: &str| declared.iter().find(|(d, _)| d == name).map_or(system.clone(), |(_, s)| s.clone());
     for (i, name) in names.iter().enumerate() {
@@ -478,6 +478,7 @@ fn method(
         differentiation,
         energy_jump: EnergyJump { threshold, action },
         composition,
+        atlas: !matches!(&m.atlas, Some(a) if !*a.get_ref()),
     })
 }
 

@@ -14,7 +14,6 @@ use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
 use crate::{Error, InitialMomentum, Method, Problem, Split, System};
 
-
 /// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
 ///
 /// [`Stepper::new`] does what a run does before its first step: it checks the input and the
@@ -244,7 +243,8 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         let in_chart = InChart::new(self.system.clone(), chart);
         let has_group = Split::new(&in_chart.coordinates()).n_g() > 0;
         let method = Method { connection: None, reduced: self.method.reduced && has_group, ..self.method.clone() };
-        let problem = Problem { q0: q.to_vec(), initial: InitialMomentum::Momentum(p.to_vec()), ..self.problem.clone() };
+        let problem =
+            Problem { q0: q.to_vec(), initial: InitialMomentum::Momentum(p.to_vec()), ..self.problem.clone() };
         ChartStepper::new(in_chart, &problem, &method)
     }
 

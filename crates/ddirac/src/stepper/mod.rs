@@ -32,13 +32,13 @@ use crate::{
     System,
 };
 
+pub use atlas::Stepper;
 pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
 pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
 use stages::Stages;
 pub use stages::MAX_SUBDIVISION;
 use state::Memory;
-pub use atlas::Stepper;
 pub use state::{OwnedRow, State, StepReport};
 
 /// What a run needs before its first step: validated initial data, the split, the connection and a

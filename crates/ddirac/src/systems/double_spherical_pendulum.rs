@@ -182,7 +182,7 @@ impl System<4> for DoubleSphericalPendulum {
         charts
     }
 
-    fn to_main<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
+    fn chart_to_main<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
         // The bob near its pole: (a, b) → its polar angle φ and its azimuth α relative to the other.
         let polar = |a: D, b: D| {
             let (sa, ca) = a.sin_cos();
@@ -210,7 +210,7 @@ impl System<4> for DoubleSphericalPendulum {
         }
     }
 
-    fn from_main<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
+    fn main_to_chart<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> [D; 4] {
         // The direction of a bob at polar angle φ and azimuth α relative to the other → (a, b).
         let about_y = |phi: D, alpha: D| {
             let (s, c) = phi.sin_cos();

@@ -95,7 +95,8 @@ pub const BUILT_IN: &[BuiltIn] = &[
     },
     BuiltIn {
         name: "spherical_pendulum",
-        description: "spherical pendulum in (θ, φ), θ the azimuth (group), φ from the upward vertical; atlas with two polar caps",
+        description:
+            "spherical pendulum in (θ, φ), θ the azimuth (group), φ from the upward vertical; atlas with two polar caps",
         defaults: || SphericalPendulum::default().parameters(),
         build: |o| build(SphericalPendulum::default(), o),
     },

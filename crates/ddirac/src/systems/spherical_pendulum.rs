@@ -82,11 +82,14 @@ impl System<2> for SphericalPendulum {
 
     fn charts(&self) -> Vec<Chart<2>> {
         CAPS.iter()
-            .map(|(name, _)| Chart { name: (*name).into(), coordinates: [Coordinate::shape("x"), Coordinate::shape("y")] })
+            .map(|(name, _)| Chart {
+                name: (*name).into(),
+                coordinates: [Coordinate::shape("x"), Coordinate::shape("y")],
+            })
             .collect()
     }
 
-    fn to_main<D: Scalar>(&self, chart: usize, q: &[D; 2]) -> [D; 2] {
+    fn chart_to_main<D: Scalar>(&self, chart: usize, q: &[D; 2]) -> [D; 2] {
         let side = CAPS[chart - 1].1;
         let [x, y] = *q;
         let r2 = x * x + y * y;
@@ -94,7 +97,7 @@ impl System<2> for SphericalPendulum {
         [y.atan2(x), r2.sqrt().atan2(z)]
     }
 
-    fn from_main<D: Scalar>(&self, _chart: usize, q: &[D; 2]) -> [D; 2] {
+    fn main_to_chart<D: Scalar>(&self, _chart: usize, q: &[D; 2]) -> [D; 2] {
         let s = q[1].sin();
         [s * q[0].cos(), s * q[0].sin()]
     }
