@@ -123,11 +123,14 @@ fn double_spherical_pendulum_conserves_the_momentum_map() {
     assert_eq!(summary["steps"], 1000);
     assert!(summary["reference_error"].is_null());
     assert_eq!(numbers(&summary["momentum_map"]["initial"]), vec![0.0]);
-    assert!(summary["momentum_map"]["max_drift"].as_f64().unwrap() <= 1e-12);
+    // The momenta reach 10⁶ here. While both bobs are near the bottom the run is in a chart without
+    // group coordinates, where the discrete Noether theorem conserves the momentum map to round-off of
+    // the momenta (measured 6.2e-9, 6e-15 of them); in the other charts it is exact.
+    assert!(summary["momentum_map"]["max_drift"].as_f64().unwrap() <= 1e-13 * 1e6);
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "t,vartheta1,phi1,vartheta2,phi2,p_vartheta1,p_phi1,p_vartheta2,p_phi2,energy,discrete_energy,momentum_vartheta1"
+        "t,vartheta1,phi1,vartheta2,phi2,p_vartheta1,p_phi1,p_vartheta2,p_phi2,energy,discrete_energy,momentum_vartheta1,chart"
     );
     assert_eq!(lines.count(), 101, "every = 10 over 1000 steps, plus the initial row");
     // The reduced-then-reconstructed run follows the unreduced one.

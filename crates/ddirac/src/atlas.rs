@@ -10,7 +10,8 @@
 //! symplectic, and equivariant where the group translates the chart's group coordinates.
 //!
 //! Between steps, where the current chart's measure has fallen below [`SWITCH_BELOW`], the run moves
-//! to the chart with the largest measure at the current point: q' = ψ_b(φ_a(q)) and the momenta by the
+//! to the chart with the largest measure at the current point (preferring those with group
+//! coordinates, see [`RETURN_ABOVE`]): q' = ψ_b(φ_a(q)) and the momenta by the
 //! cotangent lift p' = Dτ(q')ᵀ p of the transition τ = ψ_a ∘ φ_b ([`transition`]), a symplectic map.
 //! Where the group translates the group coordinates of both charts (φ equivariant), Dτ maps the group
 //! direction to itself exactly, so the momentum map J = p_g is carried over exactly.
@@ -23,6 +24,11 @@ use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
 /// below this, for the chart with the largest measure there (if that is larger). Measures are about
 /// 1 where a chart is regular: |sin θ| = ½ is 30° from the pole of spherical coordinates.
 pub const SWITCH_BELOW: f64 = 0.5;
+
+/// A run in a chart that does not carry the momentum map (fewer group coordinates than the main
+/// chart: near a point the symmetry fixes, where no chart has them) returns to one that does as soon
+/// as that chart's measure is above this.
+pub const RETURN_ABOVE: f64 = 0.7;
 
 /// A system seen in chart `chart` of its atlas (0: the main chart): the chart's coordinates, and the
 /// Lagrangian L ∘ Tφ of the chart.

@@ -124,12 +124,11 @@ pub trait System<const N: usize> {
     }
 
     /// Main-chart coordinates `q` of a point, moved to the representative nearest `near` (the last
-    /// reported point), so that the reported motion is continuous across chart switches. The default
-    /// moves each angle by whole turns; a main chart whose angles are periodic together (ϑ1 ± π,
+    /// reported point), so that the reported motion is continuous across chart switches; `kinds` are
+    /// those of the main chart's coordinates. The default moves each angle by whole turns; a main chart whose angles are periodic together (ϑ1 ± π,
     /// ϑ2 ∓ π of the double spherical pendulum) says so here.
-    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N]) -> [f64; N] {
-        let kinds = self.coordinates().map(|c| c.kind);
-        crate::atlas::nearest_turns(q, near, &kinds)
+    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N], kinds: &[CoordinateKind; N]) -> [f64; N] {
+        crate::atlas::nearest_turns(q, near, kinds)
     }
 }
 
@@ -244,7 +243,7 @@ impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
         (**self).chart_quality(chart, q)
     }
 
-    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N]) -> [f64; N] {
-        (**self).nearest_in_main(q, near)
+    fn nearest_in_main(&self, q: [f64; N], near: &[f64; N], kinds: &[CoordinateKind; N]) -> [f64; N] {
+        (**self).nearest_in_main(q, near, kinds)
     }
 }

@@ -90,7 +90,8 @@ fn pole_passages_are_as_accurate_as_runs_far_from_the_pole() {
                 far.error
             );
             assert!((order - 2.0).abs() < 0.1, "L_z = {l_z:e}: order {order}");
-            assert!(coarse.energy < 1e-4 && fine.energy < 1e-5, "L_z = {l_z:e}: energy {:e}", coarse.energy);
+            assert!(coarse.energy <= far.energy, "L_z = {l_z:e}: energy {:e} against {:e}", coarse.energy, far.energy);
+            assert!(fine.energy <= far.energy / 10.0, "L_z = {l_z:e}: energy {:e} at h = 0.0025", fine.energy);
             // In the polar caps the steps are unreduced; the momentum map is conserved by the discrete
             // Noether theorem, to the Newton tolerance.
             assert!(coarse.momentum.max(fine.momentum) < 2e-12, "L_z = {l_z:e}: momentum map {:e}", coarse.momentum);

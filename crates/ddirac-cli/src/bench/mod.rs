@@ -221,7 +221,8 @@ pub const LAST_ROW_ONLY: OutputOptions = OutputOptions { every: usize::MAX, wrap
 
 /// A method of the default Newton options.
 pub fn method(rule: Rule, reduced: bool, variant: Variant) -> Method {
-    Method { rule, variant, reduced, ..Method::default() }
+    // The paper's schemes in the paper's coordinates: no chart switches.
+    Method { rule, variant, reduced, atlas: false, ..Method::default() }
 }
 
 /// The name of a method in tables: `reduced (+)`, `unreduced (−)`.

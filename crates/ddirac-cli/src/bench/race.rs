@@ -158,7 +158,13 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
 /// one derivative path at every step count.
 fn composed(order: u8) -> Method {
     let composition = Composition::for_order(order).expect("an order of the table");
-    Method { rule: Rule::Midpoint, composition, differentiation: Differentiation::Compiled, ..Method::default() }
+    Method {
+        rule: Rule::Midpoint,
+        composition,
+        differentiation: Differentiation::Compiled,
+        atlas: false,
+        ..Method::default()
+    }
 }
 
 /// The euclidean distance of a configuration from a reference, on the coordinates the reference gives.

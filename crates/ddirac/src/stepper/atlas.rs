@@ -9,10 +9,14 @@
 
 use super::progress::Record;
 use super::{ChartStepper, OwnedRow, State, StepReport};
-use crate::atlas::{self, InChart, SWITCH_BELOW};
+use crate::atlas::{self, InChart, RETURN_ABOVE, SWITCH_BELOW};
 use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
-use crate::{Error, InitialMomentum, Method, Problem, Split, System};
+use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split, System};
+
+/// How far (relative) a point may come back from a chart's maps there and back and still count as in
+/// the chart.
+const DOMAIN_TOLERANCE: f64 = 1e-6;
 
 /// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
 ///
@@ -66,6 +70,8 @@ pub struct Stepper<S, const N: usize> {
     /// The current point in the main chart, followed step by step outside it (continuous angles).
     near: [f64; N],
     split: Split,
+    /// The kinds of the main chart's coordinates.
+    kinds: [CoordinateKind; N],
     /// Whether the momentum map is p_g in each chart: it has the main chart's number of group
     /// coordinates (else it is measured in the main chart after each step there).
     carries_momentum: Vec<bool>,
@@ -83,6 +89,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         let extra = system.charts().len();
         let near = main.progress.config.unwrapped();
         let split = Split::new(&system.coordinates());
+        let kinds = system.coordinates().map(|c| c.kind);
         let carries_momentum =
             atlas::all_charts(&system).iter().map(|c| Split::new(&c.coordinates).n_g() == split.n_g()).collect();
         let mut charts = vec![Some(main)];
@@ -97,6 +104,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
             switching,
             near,
             split,
+            kinds,
             carries_momentum,
             wrap_angles: false,
             switches: 0,
@@ -172,11 +180,11 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         if self.current != 0 {
             let (q, p) = self.chart_state();
             let raw = atlas::point(&self.system, self.current, 0, &q);
-            self.near = self.system.nearest_in_main(raw, &self.near);
+            self.near = self.system.nearest_in_main(raw, &self.near, &self.kinds);
             if !self.carries_momentum[self.current] {
                 if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
-                    let split = self.split.clone();
-                    self.chart_mut().progress.record.drift(&split, &p_main);
+                    let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
+                    chart.progress.record.drift(&self.split, &p_main);
                 }
             }
         }
@@ -190,23 +198,52 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         (chart.progress.config.unwrapped(), p)
     }
 
-    /// Moves to the chart with the largest measure at the current point when the current chart's
-    /// has fallen below [`SWITCH_BELOW`] and another's is larger.
+    /// The measure of chart `chart` at the main-chart point `main`, if the point is in the chart:
+    /// its maps take it there and back (a chart's ψ may be defined beyond its domain, as the
+    /// projection of a hemisphere is on the other one).
+    fn quality_at(&self, chart: usize, main: &[f64; N]) -> Option<f64> {
+        let there = atlas::point(&self.system, 0, chart, main);
+        let back = self.system.nearest_in_main(atlas::point(&self.system, chart, 0, &there), main, &self.kinds);
+        let scale = main.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let apart = back.iter().zip(main).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let quality = self.system.chart_quality(chart, &there);
+        (apart <= DOMAIN_TOLERANCE * scale && quality.is_finite()).then_some(quality)
+    }
+
+    /// Moves to a better chart where the current one has degraded (its measure below
+    /// [`SWITCH_BELOW`]): to the best chart that carries the momentum map (has the main chart's group
+    /// coordinates) if its measure is at least [`SWITCH_BELOW`], else to the best chart of all. From a
+    /// chart that does not carry it, the run returns to one that does as soon as that one's measure
+    /// is above [`RETURN_ABOVE`].
     fn choose_chart(&mut self) -> Result<(), Error> {
         let q = *self.chart().progress.config.base();
         let quality = self.system.chart_quality(self.current, &q);
-        if quality >= SWITCH_BELOW || quality.is_nan() {
+        let carries = self.carries_momentum[self.current];
+        let degraded = quality < SWITCH_BELOW;
+        if carries && !degraded || quality.is_nan() {
             return Ok(());
         }
-        let mut best = (self.current, quality);
+        let main = if self.current == 0 { q } else { atlas::point(&self.system, self.current, 0, &q) };
+        let (mut carrying, mut any) = (None::<(usize, f64)>, (self.current, quality));
         for chart in (0..self.charts.len()).filter(|&c| c != self.current) {
-            let there = self.system.chart_quality(chart, &atlas::point(&self.system, self.current, chart, &q));
-            if there > best.1 {
-                best = (chart, there);
+            if !degraded && !self.carries_momentum[chart] {
+                continue;
+            }
+            let Some(there) = self.quality_at(chart, &main) else { continue };
+            if self.carries_momentum[chart] && carrying.is_none_or(|(_, best)| there > best) {
+                carrying = Some((chart, there));
+            }
+            if there > any.1 {
+                any = (chart, there);
             }
         }
-        if best.0 != self.current {
-            self.switch_to(best.0)?;
+        let target = match carrying {
+            Some((chart, there)) if there >= RETURN_ABOVE || degraded && there >= SWITCH_BELOW => chart,
+            _ if degraded => any.0,
+            _ => self.current,
+        };
+        if target != self.current {
+            self.switch_to(target)?;
         }
         Ok(())
     }
@@ -220,7 +257,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
             return Ok(());
         };
         if to == 0 {
-            q_to = self.system.nearest_in_main(q_to, &self.near);
+            q_to = self.system.nearest_in_main(q_to, &self.near, &self.kinds);
         }
         if self.charts[to].is_none() {
             self.charts[to] = Some(self.prepare(to, &q_to, &p_to)?);

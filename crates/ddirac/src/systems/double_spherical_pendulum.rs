@@ -242,7 +242,7 @@ impl System<4> for DoubleSphericalPendulum {
         first.min(second)
     }
 
-    fn nearest_in_main(&self, q: [f64; 4], near: &[f64; 4]) -> [f64; 4] {
+    fn nearest_in_main(&self, q: [f64; 4], near: &[f64; 4], _kinds: &[crate::CoordinateKind; 4]) -> [f64; 4] {
         // ϑ1 ± π with ϑ2 ∓ π is one point (θ1 moved by a turn): move θ1 = ϑ1 − ϑ2 and θ2 = ϑ1 + ϑ2 by
         // whole turns instead of ϑ1 and ϑ2.
         let azimuths = |q: &[f64; 4]| [q[0] - q[2], q[1], q[0] + q[2], q[3]];

@@ -94,13 +94,6 @@ pub const BUILT_IN: &[BuiltIn] = &[
         build: |o| build(DoubleSphericalPendulum::default(), o),
     },
     BuiltIn {
-        name: "spherical_pendulum",
-        description:
-            "spherical pendulum in (θ, φ), θ the azimuth (group), φ from the upward vertical; atlas with two polar caps",
-        defaults: || SphericalPendulum::default().parameters(),
-        build: |o| build(SphericalPendulum::default(), o),
-    },
-    BuiltIn {
         name: "two_body",
         description: "two bodies in the plane, g = r1, x = r2 − r1 (centre-of-mass connection K ≠ 0)",
         defaults: || TwoBody::default().parameters(),
@@ -123,6 +116,13 @@ pub const BUILT_IN: &[BuiltIn] = &[
         description: "planar chain of `links` pendula under gravity, angles θ_i from the vertical; no symmetry",
         defaults: pendulum_chain::defaults,
         build: pendulum_chain::build,
+    },
+    BuiltIn {
+        name: "spherical_pendulum",
+        description:
+            "spherical pendulum in (θ, φ), θ the azimuth (group), φ from the upward vertical; atlas with two polar caps",
+        defaults: || SphericalPendulum::default().parameters(),
+        build: |o| build(SphericalPendulum::default(), o),
     },
 ];
 
