@@ -56,11 +56,18 @@ def test_the_charged_particle_gyrates_as_in_the_paper():
 def test_reduced_and_unreduced_runs_agree_and_the_momentum_map_is_exact():
     dsp = ddirac.System.builtin("double_spherical_pendulum")
     common = dict(q0=[0, 2.25, 2, 3], p0=[0, 0, 1, 1], step=0.01, steps=1000)
+    # In the paper's chart (no chart switches) the reduced run holds the momentum map exactly.
+    paper = ddirac.simulate(dsp, reduced=True, atlas=False, **common)
+    assert paper.summary["momentum_map"]["max_drift"] == 0.0 and paper.summary["chart_switches"] == 0
     reduced = ddirac.simulate(dsp, reduced=True, **common)
     unreduced = ddirac.simulate(dsp, reduced=False, **common)
     assert np.max(np.abs(reduced.q - unreduced.q)) < 1e-8
+    # With the atlas, while both bobs are near the bottom the run is in a chart without group
+    # coordinates: the momentum map is conserved to round-off of the momenta (which reach 1e6).
+    assert reduced.summary["chart_switches"] > 0
+    scale = np.max(np.abs(reduced.p))
     drift = np.max(np.abs(reduced.momentum_map - reduced.momentum_map[0]))
-    assert drift == 0.0 and reduced.summary["momentum_map"]["max_drift"] == 0.0
+    assert drift <= 1e-13 * scale and reduced.summary["momentum_map"]["max_drift"] <= 1e-13 * scale
     energy = reduced.energy
     assert np.max(np.abs(energy - energy[0])) / abs(energy[0]) < 1e-4
 

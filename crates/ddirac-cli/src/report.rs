@@ -173,7 +173,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             order: method.composition.order(),
             composition: method.composition.name(),
             stages: method.composition.coefficients().len(),
-            atlas: method.atlas && !plan.system.charts().is_empty(),
+            atlas: method.atlas,
             energy_jump_threshold: method.energy_jump.threshold,
         },
         steps: summary.steps,

@@ -399,6 +399,7 @@ fn summary_dict<'py>(
     d.set_item("newton", newton)?;
     d.set_item("wall_seconds", s.wall_seconds)?;
     d.set_item("reference_error", s.reference_error)?;
+    d.set_item("chart_switches", s.chart_switches)?;
     let warnings = PyList::empty(py);
     for w in &s.warnings {
         let entry = PyDict::new(py);
