@@ -248,11 +248,31 @@ pub fn human(plan: &Plan, summary: &Summary, dir: &Path, total_seconds: f64) -> 
         ) + &subdivided(&summary.newton),
         format!("  derivatives      {}", summary.derivatives),
         format!("  reference error  {reference}"),
+        charts(plan, summary),
         warnings(&summary.warnings),
         format!("  output           {}", dir.display()),
         format!("  wall time        {:.3} s ({:.3} s integrating)", total_seconds, summary.wall_seconds),
     ]
+    .into_iter()
+    .filter(|line| !line.is_empty())
+    .collect::<Vec<_>>()
     .join("\n")
+}
+
+/// The atlas line: the charts and the switches between them, for a system with an atlas (empty
+/// without one).
+fn charts(plan: &Plan, summary: &Summary) -> String {
+    let charts = plan.system.charts();
+    match (charts.is_empty(), plan.method.atlas) {
+        (true, _) => String::new(),
+        (false, false) => format!("  charts           main chart only (atlas = false; {} more declared)", charts.len()),
+        (false, true) => format!(
+            "  charts           {} switches among {} charts (the main one and {}; see the `chart` column)",
+            summary.chart_switches,
+            charts.len() + 1,
+            if charts.len() <= 2 { charts.join(", ") } else { format!("{} others", charts.len()) }
+        ),
+    }
 }
 
 /// The momentum-map line; the relative drift is undefined when J_0 = 0, so it is left out then.

@@ -123,8 +123,14 @@ pub fn text_system(
     let mut sources = vec![("lagrangian".to_owned(), lagrangian.clone())];
     sources.extend(definitions.iter().map(|(n, v)| (format!("definition:{n}"), v.clone())));
     sources.extend(exact.iter().map(|(n, v)| (format!("exact:{n}"), v.clone())));
-    let spec =
-        ExpressionSpec { coordinates, lagrangian, definitions, parameters: parameters.clone(), exact_solution: exact };
+    let spec = ExpressionSpec {
+        coordinates,
+        lagrangian,
+        definitions,
+        parameters: parameters.clone(),
+        exact_solution: exact,
+        ..ExpressionSpec::default()
+    };
     let inner = spec.into_dyn().map_err(|e| crate::error::expression(e, &sources))?;
     Ok(SystemHandle { inner: Arc::from(inner), name: name.unwrap_or_else(|| "custom".to_owned()), parameters })
 }

@@ -153,6 +153,7 @@ fn charged_particle_spec(m: f64, b0: f64) -> ExpressionSpec {
             (string("y"), string("cos(t) - 1")),
             (string("z"), string("t")),
         ],
+        ..ExpressionSpec::default()
     }
 }
 
@@ -467,6 +468,7 @@ fn pi_is_predefined_unless_the_spec_names_it() {
         definitions: vec![],
         parameters,
         exact_solution: vec![],
+        ..ExpressionSpec::default()
     };
     let system = ExpressionSystem::<1>::new(&spec(vec![])).unwrap();
     assert_eq!(system.lagrangian(&[0.0], &[1.0]), std::f64::consts::PI);

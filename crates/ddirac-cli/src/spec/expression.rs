@@ -7,13 +7,13 @@
 
 use std::ops::Range;
 
-use ddirac::expression::{ExpressionError, ExpressionSpec, Origin};
+use ddirac::expression::{ChartPart, ChartSpec, ExpressionError, ExpressionSpec, Origin};
 use ddirac::DynSystem;
 use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::lists::{self, Declared};
-use super::{strings, Number, Sources, Spec, SystemTable};
+use super::lists::{self, Declared, Lists};
+use super::{strings, ChartTable, Number, Sources, Spec, SystemTable};
 use crate::diagnostics::{SpecError, SpecSource};
 
 /// The system a `[system]` table defines.
@@ -30,9 +30,24 @@ pub struct Built {
 
 /// The entries of a table of sources, in the order written.
 fn sources(table: &Option<Sources>) -> Vec<(&Spanned<String>, &Spanned<String>)> {
-    let mut entries: Vec<_> = table.as_ref().map(|t| t.get_ref().iter().collect()).unwrap_or_default();
+    table.as_ref().map(entries).unwrap_or_default()
+}
+
+/// The entries of a table of sources that is given, in the order written.
+fn entries(table: &Sources) -> Vec<(&Spanned<String>, &Spanned<String>)> {
+    let mut entries: Vec<_> = table.get_ref().iter().collect();
     entries.sort_by_key(|(key, _)| key.span().start);
     entries
+}
+
+/// The charts of the atlas, each with its coordinates (`[[system.charts]]`).
+fn charts<'t>(source: &SpecSource, table: &'t SystemTable) -> Result<Vec<(&'t ChartTable, Declared)>, Box<SpecError>> {
+    let charts = table.charts.iter().flatten().enumerate();
+    charts
+        .map(|(i, chart)| {
+            Ok((chart.get_ref(), lists::declare(source, &Lists::of_chart(chart.get_ref(), i + 1), chart.span())?))
+        })
+        .collect()
 }
 
 /// Builds the system of `table`, written at `span`, with the constants of `[parameters]`.
@@ -53,16 +68,30 @@ pub fn build(
         })
         .collect::<Result<Vec<_>, Box<SpecError>>>()?;
     let owned = |entries: Vec<(&Spanned<String>, &Spanned<String>)>| {
-        entries.into_iter().map(|(k, v)| (k.get_ref().clone(), v.get_ref().clone())).collect()
+        entries.into_iter().map(|(k, v)| (k.get_ref().clone(), v.get_ref().clone())).collect::<Vec<_>>()
     };
+    let charts = charts(source, table)?;
+    let chart_specs = charts
+        .iter()
+        .enumerate()
+        .map(|(i, (chart, declared))| ChartSpec {
+            name: chart.name.as_ref().map_or_else(|| format!("chart {}", i + 1), |n| n.get_ref().clone()),
+            coordinates: declared.coordinates.clone(),
+            to_main: owned(entries(&chart.to_main)),
+            from_main: owned(entries(&chart.from_main)),
+            quality: chart.quality.get_ref().clone(),
+        })
+        .collect();
     let expression = ExpressionSpec {
         coordinates: declared.coordinates.clone(),
         lagrangian: table.lagrangian.get_ref().clone(),
         definitions: owned(sources(&table.definitions)),
         parameters: values.clone(),
         exact_solution: owned(sources(&table.exact)),
+        quality: table.quality.as_ref().map(|q| q.get_ref().clone()),
+        charts: chart_specs,
     };
-    let context = Context { source, table, declared: &declared, parameters: &parameters, span };
+    let context = Context { source, table, declared: &declared, charts: &charts, parameters: &parameters, span };
     let system = expression.into_dyn().map_err(|e| context.error(e))?;
     let name = table.name.as_ref().map_or_else(|| "custom".to_owned(), |n| n.get_ref().clone());
     let coordinates =
@@ -75,6 +104,7 @@ struct Context<'a> {
     source: &'a SpecSource,
     table: &'a SystemTable,
     declared: &'a Declared,
+    charts: &'a [(&'a ChartTable, Declared)],
     parameters: &'a [(&'a Spanned<String>, &'a Number)],
     span: Range<usize>,
 }
@@ -95,6 +125,25 @@ impl Context<'_> {
             Origin::Coordinate(name) => (None, self.declared.span_of(name)),
             Origin::Parameter(name) => {
                 (None, self.parameters.iter().find(|(k, _)| k.get_ref() == name).map(|(k, _)| k.span()))
+            }
+            Origin::Quality => (self.table.quality.as_ref(), None),
+            Origin::Chart { chart, part } => {
+                let Some((table, declared)) = chart.checked_sub(1).and_then(|i| self.charts.get(i)) else {
+                    return (None, None);
+                };
+                // An entry of `to_main` or `from_main`, or the table itself where the entry is missing.
+                fn map<'t>(sources: &'t Sources, name: &str) -> (Option<&'t Spanned<String>>, Option<Range<usize>>) {
+                    match entries(sources).into_iter().find(|(k, _)| k.get_ref() == name) {
+                        Some((key, value)) => (Some(value), Some(key.span())),
+                        None => (None, Some(sources.span())),
+                    }
+                }
+                match part {
+                    ChartPart::Coordinate(name) => (None, declared.span_of(name)),
+                    ChartPart::ToMain(name) => map(&table.to_main, name),
+                    ChartPart::FromMain(name) => map(&table.from_main, name),
+                    ChartPart::Quality => (Some(&table.quality), None),
+                }
             }
             _ => (None, None),
         }
@@ -210,6 +259,7 @@ fn label(error: &ExpressionError) -> String {
         ExpressionError::Arity { .. } => "this call".into(),
         ExpressionError::NonFinite { .. } => "not finite".into(),
         ExpressionError::UnknownCoordinate { .. } => "not a coordinate".into(),
+        ExpressionError::MissingMap { name, .. } => format!("no expression for `{name}` here"),
         _ => "declared here".into(),
     }
 }
@@ -221,7 +271,32 @@ fn help(error: &ExpressionError, context: &Context<'_>) -> Option<String> {
         _ => names.join(", "),
     };
     let coordinates: Vec<String> = context.declared.coordinates.iter().map(|c| c.name.clone()).collect();
+    let names_of = |declared: &Declared| list(declared.coordinates.iter().map(|c| c.name.clone()).collect());
     match error {
+        ExpressionError::UnknownName { origin: Origin::Chart { chart, part }, .. }
+        | ExpressionError::UnknownCoordinate { origin: Origin::Chart { chart, part }, .. } => {
+            let (_, declared) = context.charts.get(chart.checked_sub(1)?)?;
+            let parameters = list(parameter_names(context));
+            Some(match part {
+                ChartPart::FromMain(_) => format!(
+                    "`from_main` gives each of the chart's coordinates ({}) in those of the main chart ({}) and the \
+                     parameters ({parameters})",
+                    names_of(declared),
+                    list(coordinates)
+                ),
+                _ => format!(
+                    "`to_main` gives each coordinate of the main chart ({}), and `quality` the chart's measure, in \
+                     the chart's coordinates ({}) and the parameters ({parameters})",
+                    list(coordinates),
+                    names_of(declared)
+                ),
+            })
+        }
+        ExpressionError::UnknownName { origin: Origin::Quality, .. } => Some(format!(
+            "the main chart's `quality` may use its coordinates ({}) and the parameters ({})",
+            list(coordinates),
+            list(parameter_names(context))
+        )),
         ExpressionError::UnknownName { origin: Origin::ExactSolution(_), .. } => {
             Some(format!("an exact solution may use `t` and the parameters ({})", list(parameter_names(context))))
         }

@@ -8,7 +8,7 @@ use ddirac::{Coordinate, Role};
 use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::{Names, SystemTable};
+use super::{ChartTable, Names, SystemTable};
 use crate::diagnostics::{SpecError, SpecSource};
 
 /// The coordinates in order, with the span of each name in `shape` or `group`.
@@ -40,15 +40,49 @@ fn twice(source: &SpecSource, key: &str, (first, second): (&Spanned<String>, &Sp
         LabeledSpan::new_with_span(Some("first here".into()), first.span()),
         LabeledSpan::new_with_span(Some("and again here".into()), second.span()),
     ];
-    source.error_with(format!("`{}` appears twice in `system.{key}`", first.get_ref()), labels)
+    source.error_with(format!("`{}` appears twice in `{key}`", first.get_ref()), labels)
+}
+
+/// The coordinate lists of the `[system]` table or of one of its charts, and where they are.
+pub struct Lists<'a> {
+    /// `system`, or `system.charts` with the chart's number.
+    pub table: String,
+    /// `shape`.
+    pub shape: &'a Option<Names>,
+    /// `group`.
+    pub group: &'a Option<Names>,
+    /// `angles`.
+    pub angles: &'a Option<Names>,
+    /// `order`.
+    pub order: &'a Option<Names>,
+}
+
+impl<'a> Lists<'a> {
+    /// The lists of the `[system]` table.
+    pub fn of_system(table: &'a SystemTable) -> Self {
+        let SystemTable { shape, group, angles, order, .. } = table;
+        Self { table: "system".into(), shape, group, angles, order }
+    }
+
+    /// The lists of chart `index` (from 1).
+    pub fn of_chart(chart: &'a ChartTable, index: usize) -> Self {
+        let ChartTable { shape, group, angles, order, .. } = chart;
+        Self { table: format!("system.charts (chart {index})"), shape, group, angles, order }
+    }
 }
 
 /// Checks the coordinate lists of `table` (written at `span`) and puts the coordinates in order.
 pub fn coordinates(source: &SpecSource, table: &SystemTable, span: Range<usize>) -> Result<Declared, Box<SpecError>> {
-    let (shape, group) = (entries(&table.shape), entries(&table.group));
-    for (key, list) in [("shape", shape), ("group", group), ("angles", entries(&table.angles))] {
+    declare(source, &Lists::of_system(table), span)
+}
+
+/// Checks coordinate lists (of a table written at `span`) and puts the coordinates in order.
+pub fn declare(source: &SpecSource, table: &Lists<'_>, span: Range<usize>) -> Result<Declared, Box<SpecError>> {
+    let (shape, group) = (entries(table.shape), entries(table.group));
+    let key = |name: &str| format!("{}.{name}", table.table);
+    for (name, list) in [("shape", shape), ("group", group), ("angles", entries(table.angles))] {
         if let Some(pair) = duplicate(list) {
-            return Err(twice(source, key, pair));
+            return Err(twice(source, &key(name), pair));
         }
     }
     if let Some((x, g)) = shape.iter().find_map(|x| group.iter().find(|g| g.get_ref() == x.get_ref()).map(|g| (x, g))) {
@@ -67,38 +101,42 @@ pub fn coordinates(source: &SpecSource, table: &SystemTable, span: Range<usize>)
         shape.iter().map(|x| (x, Role::Shape)).chain(group.iter().map(|g| (g, Role::Group))).collect();
     if declared.is_empty() {
         return Err(source
-            .error(Some(span), "the `[system]` table declares no coordinates", "this system")
+            .error(Some(span), format!("`{}` declares no coordinates", table.table), "this table")
             .with_help("list the coordinates in `shape = [...]` and the symmetry's coordinates in `group = [...]`"));
     }
     let names: Vec<&str> = declared.iter().map(|(n, _)| n.get_ref().as_str()).collect();
-    let unknown = |entry: &Spanned<String>, key: &str| {
+    let unknown = |entry: &Spanned<String>, name: &str| {
         source
             .error(
                 Some(entry.span()),
-                format!("`{}` in `system.{key}` is not a coordinate", entry.get_ref()),
+                format!("`{}` in `{}` is not a coordinate", entry.get_ref(), key(name)),
                 "not in `shape` or `group`",
             )
             .with_help(format!("the coordinates are: {}", names.join(", ")))
     };
-    for angle in entries(&table.angles) {
+    for angle in entries(table.angles) {
         if !names.contains(&angle.get_ref().as_str()) {
             return Err(unknown(angle, "angles"));
         }
     }
-    if let Some(order) = &table.order {
+    if let Some(order) = table.order {
         let list = order.get_ref();
         if let Some(entry) = list.iter().find(|e| !names.contains(&e.get_ref().as_str())) {
             return Err(unknown(entry, "order"));
         }
         if let Some(pair) = duplicate(list) {
-            return Err(twice(source, "order", pair));
+            return Err(twice(source, &key("order"), pair));
         }
         let missing: Vec<&str> = names.iter().copied().filter(|n| !list.iter().any(|e| e.get_ref() == n)).collect();
         if !missing.is_empty() {
             return Err(source
                 .error(
                     Some(order.span()),
-                    format!("`system.order` is not a permutation of the coordinates: it misses {}", missing.join(", ")),
+                    format!(
+                        "`{}` is not a permutation of the coordinates: it misses {}",
+                        key("order"),
+                        missing.join(", ")
+                    ),
                     "this order",
                 )
                 .with_help(format!("list every coordinate once: {}", names.join(", "))));
@@ -108,7 +146,7 @@ pub fn coordinates(source: &SpecSource, table: &SystemTable, span: Range<usize>)
             .map(|e| *declared.iter().find(|(n, _)| n.get_ref() == e.get_ref()).expect("checked above"))
             .collect();
     }
-    let angles = entries(&table.angles);
+    let angles = entries(table.angles);
     let coordinates = declared
         .iter()
         .map(|(name, role)| {

@@ -7,6 +7,8 @@
 //!               angles = ["theta"]  order = [...]  lagrangian = "0.5*m*x_dot^2 + ..."
 //! [system.definitions]  Ax = "-B0/2*y"        # named sub-expressions
 //! [system.exact]        x = "sin(t)"          # exact solution, in `t` and the parameters
+//! [[system.charts]]     name = "cap"  shape = ["u", "v"]  quality = "..."   # an atlas (with
+//!                       to_main = { x = "..." }  from_main = { u = "..." }  # system.quality)
 //! [parameters]  m = 1.0                       # overrides of the defaults, or the constants of L
 //! [method]      rule = "left"  variant = "plus"  reduced = true  connection = [[0, 0, 0]]
 //!               tolerance = 1e-12  max_iterations = 50  jacobian = "reuse"  check_invariance = true
@@ -180,6 +182,34 @@ pub struct SystemTable {
     pub definitions: Option<Sources>,
     /// An exact solution, coordinate name → expression in `t` and the parameters.
     pub exact: Option<Sources>,
+    /// With an atlas: where the main chart is good (an expression in the coordinates and the
+    /// parameters, about 1 where regular, falling to 0 at its singular set).
+    pub quality: Option<Spanned<String>>,
+    /// The other charts of the atlas, `[[system.charts]]`.
+    pub charts: Option<Vec<Spanned<ChartTable>>>,
+}
+
+/// `[[system.charts]]`: a chart of the system's atlas (paper §6), with its coordinates, the maps to
+/// and from the main chart and where it is good.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChartTable {
+    /// A name for messages (default `chart <i>`).
+    pub name: Option<Spanned<String>>,
+    /// The chart's shape coordinates.
+    pub shape: Option<Names>,
+    /// The chart's group coordinates (translated by the same symmetry as the main chart's).
+    pub group: Option<Names>,
+    /// The chart's coordinates that live on S¹.
+    pub angles: Option<Names>,
+    /// The order of the chart's coordinates (default: shape, then group).
+    pub order: Option<Names>,
+    /// Each main-chart coordinate as an expression in the chart's coordinates and the parameters.
+    pub to_main: Sources,
+    /// Each of the chart's coordinates as an expression in the main chart's and the parameters.
+    pub from_main: Sources,
+    /// Where the chart is good, an expression in its coordinates and the parameters.
+    pub quality: Spanned<String>,
 }
 
 /// `[method]`.

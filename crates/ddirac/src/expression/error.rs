@@ -22,6 +22,15 @@ pub enum Origin {
     Coordinate(String),
     /// The declaration of the parameter with this name (no source text).
     Parameter(String),
+    /// The main chart's measure, with an atlas ([`ExpressionSpec::quality`](super::ExpressionSpec::quality)).
+    Quality,
+    /// A part of chart `chart` (numbered from 1) of the atlas.
+    Chart {
+        /// The chart, numbered from 1 as in [`crate::System::charts`].
+        chart: usize,
+        /// Which of its expressions or declarations.
+        part: super::ChartPart,
+    },
 }
 
 impl fmt::Display for Origin {
@@ -33,6 +42,8 @@ impl fmt::Display for Origin {
             Origin::ExactSolution(name) => write!(f, "the exact solution for `{name}`"),
             Origin::Coordinate(name) => write!(f, "coordinate `{name}`"),
             Origin::Parameter(name) => write!(f, "parameter `{name}`"),
+            Origin::Quality => write!(f, "the main chart's `quality`"),
+            Origin::Chart { chart, part } => write!(f, "{part} of chart {chart}"),
         }
     }
 }
@@ -276,6 +287,29 @@ pub enum ExpressionError {
     /// A system without coordinates.
     #[error("the system has no coordinates")]
     NoCoordinates,
+    /// An atlas without the main chart's measure.
+    #[error(
+        "a system with charts says where its main chart is good: give `quality`, an expression in its coordinates"
+    )]
+    MissingQuality,
+    /// A chart map without the expression of one coordinate.
+    #[error("{origin} is missing: `to_main` gives each coordinate of the main chart, `from_main` each of the chart's")]
+    MissingMap {
+        /// The missing entry.
+        origin: Origin,
+        /// The coordinate without an expression.
+        name: String,
+    },
+    /// A chart with another number of coordinates than the main chart.
+    #[error("chart {chart} has {found} coordinates, the main chart {expected}")]
+    ChartDimension {
+        /// The chart, numbered from 1.
+        chart: usize,
+        /// The main chart's number of coordinates.
+        expected: usize,
+        /// The chart's.
+        found: usize,
+    },
     /// A system built for a number of coordinates it does not have.
     #[error("the system has {found} coordinates, but {expected} were expected")]
     Dimension {
@@ -309,8 +343,11 @@ impl ExpressionError {
             | ExpressionError::InvalidName { origin, .. }
             | ExpressionError::DuplicateName { origin, .. }
             | ExpressionError::NonFinite { origin, .. }
-            | ExpressionError::UnknownCoordinate { origin, .. } => Some(origin),
+            | ExpressionError::UnknownCoordinate { origin, .. }
+            | ExpressionError::MissingMap { origin, .. } => Some(origin),
             ExpressionError::NoCoordinates
+            | ExpressionError::MissingQuality
+            | ExpressionError::ChartDimension { .. }
             | ExpressionError::Dimension { .. }
             | ExpressionError::TooManyCoordinates { .. } => None,
         }

@@ -57,6 +57,7 @@
 //! [`System`](crate::System).
 
 mod ast;
+mod atlas;
 mod compile;
 mod compiled_expression;
 mod definitions;
@@ -67,6 +68,7 @@ mod parser;
 mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
+pub use atlas::{ChartPart, ChartSpec};
 pub use compile::Scope;
 pub use compiled_expression::CompiledExpression;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};

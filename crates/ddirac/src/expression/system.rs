@@ -10,7 +10,7 @@
 
 use super::compile::closest;
 use super::{CompiledExpression, ExpressionError, Origin, Scope, FUNCTIONS};
-use crate::{Coordinate, DynSystem, Erased, System};
+use crate::{Chart, Coordinate, DynSystem, Erased, System};
 
 /// The largest number of coordinates [`ExpressionSpec::into_dyn`] supports.
 pub const MAX_DYN_COORDINATES: usize = 16;
@@ -43,6 +43,11 @@ pub struct ExpressionSpec {
     pub parameters: Vec<(String, f64)>,
     /// Exact solutions, coordinate name → expression in `t` and the parameters.
     pub exact_solution: Vec<(String, String)>,
+    /// With an atlas: where the main chart is good, an expression in the coordinates and the
+    /// parameters (about 1 where regular, falling to 0 at its singular set).
+    pub quality: Option<String>,
+    /// The other charts of the atlas (paper §6; [`crate::atlas`]).
+    pub charts: Vec<super::ChartSpec>,
 }
 
 /// A system with `N` coordinates whose Lagrangian is compiled from an [`ExpressionSpec`].
@@ -72,6 +77,7 @@ pub struct ExpressionSystem<const N: usize> {
     lagrangian: CompiledExpression,
     open: OpenLagrangian,
     exact: Vec<Option<CompiledExpression>>,
+    atlas: Option<super::atlas::TextAtlas>,
 }
 
 /// The Lagrangian with its parameters as variables after q and q̇, for traces that keep them as
@@ -90,6 +96,7 @@ struct Compiled {
     lagrangian: CompiledExpression,
     open: OpenLagrangian,
     exact: Vec<Option<CompiledExpression>>,
+    atlas: Option<super::atlas::TextAtlas>,
 }
 
 impl<const N: usize> ExpressionSystem<N> {
@@ -105,7 +112,8 @@ impl<const N: usize> ExpressionSystem<N> {
         let found = compiled.coordinates.len();
         let coordinates =
             compiled.coordinates.try_into().map_err(|_| ExpressionError::Dimension { expected: N, found })?;
-        Ok(Self { coordinates, lagrangian: compiled.lagrangian, open: compiled.open, exact: compiled.exact })
+        let Compiled { lagrangian, open, exact, atlas, .. } = compiled;
+        Ok(Self { coordinates, lagrangian, open, exact, atlas })
     }
 
     /// The compiled Lagrangian with the parameters folded in; its variables are q_0 … q_{N−1}, then
@@ -142,6 +150,38 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
             return None;
         }
         Some(std::array::from_fn(|i| self.exact[i].as_ref().map(|program| program.eval(&[t]))))
+    }
+
+    fn charts(&self) -> Vec<Chart<N>> {
+        let charts = self.atlas.iter().flat_map(|atlas| &atlas.charts);
+        charts
+            .map(|c| Chart {
+                name: c.name.clone(),
+                coordinates: c.coordinates.clone().try_into().expect("checked: as many coordinates as the main chart"),
+            })
+            .collect()
+    }
+
+    fn chart_to_main<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        match &self.atlas {
+            Some(atlas) => std::array::from_fn(|i| atlas.charts[chart - 1].to_main[i].eval_with(|j| q[j])),
+            None => *q,
+        }
+    }
+
+    fn main_to_chart<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
+        match &self.atlas {
+            Some(atlas) => std::array::from_fn(|i| atlas.charts[chart - 1].from_main[i].eval_with(|j| q[j])),
+            None => *q,
+        }
+    }
+
+    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
+        match &self.atlas {
+            Some(atlas) if chart == 0 => atlas.quality.eval(q),
+            Some(atlas) => atlas.charts[chart - 1].quality.eval(q),
+            None => 1.0,
+        }
     }
 }
 
@@ -221,7 +261,8 @@ fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
         }
         solutions[i] = Some(exact.compile(origin, source)?);
     }
-    Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions })
+    let atlas = super::atlas::compile(spec)?;
+    Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions, atlas })
 }
 
 /// Checks that every declared name is an identifier, not a function, and declared once.

@@ -42,5 +42,6 @@ pub fn double_spherical_pendulum_spec() -> ExpressionSpec {
             (string("g"), 9.8),
         ],
         exact_solution: vec![],
+        ..ExpressionSpec::default()
     }
 }
