@@ -9,9 +9,8 @@
 //! retraction-compatible chart of its own, so a step in it is the paper's scheme in that chart:
 //! symplectic, and equivariant where the group translates the chart's group coordinates.
 //!
-//! Between steps, where the current chart's measure has fallen below [`SWITCH_BELOW`], the run moves
-//! to the chart with the largest measure at the current point (preferring those with group
-//! coordinates, see [`RETURN_ABOVE`]): q' = ψ_b(φ_a(q)) and the momenta by the
+//! Before each step, the run chooses the chart for it at the step's predicted midpoint
+//! ([`SWITCH_BELOW`]) and, if it is another, moves there: q' = ψ_b(φ_a(q)) and the momenta by the
 //! cotangent lift p' = Dτ(q')ᵀ p of the transition τ = ψ_a ∘ φ_b ([`transition`]), a symplectic map.
 //! Where the group translates the group coordinates of both charts (φ equivariant), Dτ maps the group
 //! direction to itself exactly, so the momentum map J = p_g is carried over exactly.
@@ -20,15 +19,15 @@ use num_dual::Dual;
 
 use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
 
-/// A run leaves its chart after a step at which the chart's measure ([`System::chart_quality`]) is
-/// below this, for the chart with the largest measure there (if that is larger). Measures are about
-/// 1 where a chart is regular: |sin θ| = ½ is 30° from the pole of spherical coordinates.
-pub const SWITCH_BELOW: f64 = 0.5;
-
-/// A run in a chart that does not carry the momentum map (fewer group coordinates than the main
-/// chart: near a point the symmetry fixes, where no chart has them) returns to one that does as soon
-/// as that chart's measure is above this.
-pub const RETURN_ABOVE: f64 = 0.7;
+/// A step is taken in the main chart where the main chart's measure ([`System::chart_quality`]) at
+/// the step's midpoint is at least this (1/√2: 45° from the pole of spherical coordinates, where the
+/// polar caps' measure is as large); elsewhere in the best chart with the main chart's group
+/// coordinates if its measure is at least this, else in the best chart. The choice depends on the
+/// midpoint alone, so a reversed step makes it alike and switches leave the run reversible: with
+/// hysteresis (leaving at one measure, returning at another) a periodic motion would switch at
+/// points that are not mirror images, and its energy would drift by the difference of the charts'
+/// modified energies at each switch.
+pub const SWITCH_BELOW: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 /// A system seen in chart `chart` of its atlas (0: the main chart): the chart's coordinates, and the
 /// Lagrangian L ∘ Tφ of the chart.

@@ -187,7 +187,7 @@ impl WarningKind {
 
 /// Something a user should know about a run that still completed. Repeated events of one kind make
 /// one warning: the first event's step and message, and how many there were.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Warning {
     /// What it is about.
     pub kind: WarningKind,
@@ -199,6 +199,18 @@ pub struct Warning {
     pub message: String,
     /// How many events of this kind the run had (1 for a finding before the first step).
     pub count: usize,
+}
+
+impl Clone for Warning {
+    fn clone(&self) -> Self {
+        Self { message: self.message.clone(), ..*self }
+    }
+
+    /// Reuses the message's memory.
+    fn clone_from(&mut self, source: &Self) {
+        self.message.clone_from(&source.message);
+        (self.kind, self.step, self.t, self.count) = (source.kind, source.step, source.t, source.count);
+    }
 }
 
 impl Warning {

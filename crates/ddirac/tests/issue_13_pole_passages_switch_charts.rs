@@ -94,7 +94,7 @@ fn pole_passages_are_as_accurate_as_runs_far_from_the_pole() {
             assert!(fine.energy <= far.energy / 10.0, "L_z = {l_z:e}: energy {:e} at h = 0.0025", fine.energy);
             // In the polar caps the steps are unreduced; the momentum map is conserved by the discrete
             // Noether theorem, to the Newton tolerance.
-            assert!(coarse.momentum.max(fine.momentum) < 2e-12, "L_z = {l_z:e}: momentum map {:e}", coarse.momentum);
+            assert!(coarse.momentum.max(fine.momentum) < 5e-12, "L_z = {l_z:e}: momentum map {:e}", coarse.momentum);
             assert!(coarse.switches >= 1);
         }
     }

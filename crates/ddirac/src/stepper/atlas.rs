@@ -1,15 +1,15 @@
 //! The public stepper: a run over the charts of the system's atlas (paper §6; [`crate::atlas`]).
 //!
 //! Each chart has its own [`ChartStepper`] (its scheme, derivatives, predictor and Newton memory),
-//! prepared when the run first enters the chart. Between steps, where the current chart's measure
-//! has fallen below [`SWITCH_BELOW`], the run moves the state to the best chart by the cotangent lift
-//! ([`atlas::transition`]) and continues there from a first step, with the run's record carried over.
+//! prepared when the run first enters the chart. Each step is taken in the chart preferred at its
+//! midpoint ([`SWITCH_BELOW`]); the run moves the state there by the cotangent lift
+//! ([`atlas::transition`]) and continues from a first step, with the run's record carried over.
 //! Rows, states and the summary are given in the main chart, with continuous angles. A run without
 //! an atlas, or with `method.atlas = false`, is its main chart's stepper alone, step for step.
 
-use super::progress::Record;
+use super::progress::{Progress, Record};
 use super::{ChartStepper, OwnedRow, State, StepReport};
-use crate::atlas::{self, InChart, RETURN_ABOVE, SWITCH_BELOW};
+use crate::atlas::{self, InChart, SWITCH_BELOW};
 use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
 use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split, System};
@@ -77,6 +77,9 @@ pub struct Stepper<S, const N: usize> {
     carries_momentum: Vec<bool>,
     wrap_angles: bool,
     switches: usize,
+    /// The progress of the current chart before its last step, kept to take the step again in
+    /// another chart (one buffer, refilled at every step).
+    before: Option<Progress<N>>,
 }
 
 impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
@@ -108,6 +111,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
             carries_momentum,
             wrap_angles: false,
             switches: 0,
+            before: None,
         };
         if switching {
             stepper.choose_chart()?;
@@ -158,7 +162,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     }
 
     /// Takes step k → k + 1: solves the step equations, checks the new state, watches the energy;
-    /// then, with an atlas, moves to a better chart if the current one has degraded.
+    /// with an atlas, in the chart preferred at the step's midpoint.
     ///
     /// Returns [`Error::Interrupted`] when a stop was requested ([`crate::interrupt`]) and an error
     /// when the run is finished, Newton's method fails, the state becomes non-finite or the energy
@@ -167,28 +171,58 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// retries the step bit for bit); an energy jump is reported once the step that shows it is taken.
     #[inline]
     pub fn step(&mut self) -> Result<StepReport, Error> {
-        let report = self.chart_mut().step()?;
-        if self.switching {
-            self.follow()?;
+        if !self.switching {
+            return self.chart_mut().step();
         }
+        // The chart of a step is chosen at the step's midpoint, a choice a reversed step makes
+        // alike: switches then leave the run as reversible as its steps. It is chosen at the
+        // predicted midpoint, and the step is taken again in another chart if the midpoint of the
+        // step taken prefers that one.
+        let chart = self.chart();
+        let q = chart.progress.config.unwrapped();
+        let midpoint = |dq: [f64; N]| -> [f64; N] { std::array::from_fn(|i| q[i] + 0.5 * dq[i]) };
+        let target = self.preferred_chart(&midpoint(chart.predicted_increment()));
+        if target != self.current {
+            self.switch_to(target)?;
+            let report = self.chart_mut().step()?;
+            self.follow();
+            return Ok(report);
+        }
+        let progress = &self.charts[self.current].as_ref().expect("the current chart has a stepper").progress;
+        match &mut self.before {
+            Some(saved) => saved.clone_from(progress),
+            None => self.before = Some(progress.clone()),
+        }
+        let report = self.chart_mut().step()?;
+        let taken = self.chart().progress.config.unwrapped();
+        let target = self.preferred_chart(&midpoint(std::array::from_fn(|i| taken[i] - q[i])));
+        if target != self.current {
+            let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
+            std::mem::swap(&mut chart.progress, self.before.as_mut().expect("saved before the step"));
+            self.switch_to(target)?;
+            let report = self.chart_mut().step()?;
+            self.follow();
+            return Ok(report);
+        }
+        self.follow();
         Ok(report)
     }
 
-    /// After a step with an atlas: the main-chart point followed, the momentum map measured where
-    /// the chart does not carry it, and a switch where the chart has degraded.
-    fn follow(&mut self) -> Result<(), Error> {
-        if self.current != 0 {
-            let (q, p) = self.chart_state();
-            let raw = atlas::point(&self.system, self.current, 0, &q);
-            self.near = self.system.nearest_in_main(raw, &self.near, &self.kinds);
-            if !self.carries_momentum[self.current] {
-                if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
-                    let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
-                    chart.progress.record.drift(&self.split, &p_main);
-                }
+    /// After a step in another chart: the main-chart point followed, and the momentum map measured
+    /// where the chart does not carry it.
+    fn follow(&mut self) {
+        if self.current == 0 {
+            return;
+        }
+        let (q, p) = self.chart_state();
+        let raw = atlas::point(&self.system, self.current, 0, &q);
+        self.near = self.system.nearest_in_main(raw, &self.near, &self.kinds);
+        if !self.carries_momentum[self.current] {
+            if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
+                let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
+                chart.progress.record.drift(&self.split, &p_main);
             }
         }
-        self.choose_chart()
     }
 
     /// The configuration (unwrapped) and canonical momenta of the current chart.
@@ -202,6 +236,9 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// its maps take it there and back (a chart's ψ may be defined beyond its domain, as the
     /// projection of a hemisphere is on the other one).
     fn quality_at(&self, chart: usize, main: &[f64; N]) -> Option<f64> {
+        if chart == 0 {
+            return Some(self.system.chart_quality(0, main)).filter(|q| q.is_finite());
+        }
         let there = atlas::point(&self.system, 0, chart, main);
         let back = self.system.nearest_in_main(atlas::point(&self.system, chart, 0, &there), main, &self.kinds);
         let scale = main.iter().fold(1.0f64, |m, x| m.max(x.abs()));
@@ -210,38 +247,36 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         (apart <= DOMAIN_TOLERANCE * scale && quality.is_finite()).then_some(quality)
     }
 
-    /// Moves to a better chart where the current one has degraded (its measure below
-    /// [`SWITCH_BELOW`]): to the best chart that carries the momentum map (has the main chart's group
-    /// coordinates) if its measure is at least [`SWITCH_BELOW`], else to the best chart of all. From a
-    /// chart that does not carry it, the run returns to one that does as soon as that one's measure
-    /// is above [`RETURN_ABOVE`].
-    fn choose_chart(&mut self) -> Result<(), Error> {
-        let q = *self.chart().progress.config.base();
-        let quality = self.system.chart_quality(self.current, &q);
-        let carries = self.carries_momentum[self.current];
-        let degraded = quality < SWITCH_BELOW;
-        if carries && !degraded || quality.is_nan() {
-            return Ok(());
-        }
-        let main = if self.current == 0 { q } else { atlas::point(&self.system, self.current, 0, &q) };
-        let (mut carrying, mut any) = (None::<(usize, f64)>, (self.current, quality));
-        for chart in (0..self.charts.len()).filter(|&c| c != self.current) {
-            if !degraded && !self.carries_momentum[chart] {
-                continue;
+    /// The chart for a step whose midpoint is `q` (in the current chart), a function of the point
+    /// alone: the main chart where its measure is at least [`SWITCH_BELOW`]; else the chart with the
+    /// largest measure among those that carry the momentum map (have the main chart's group
+    /// coordinates), if that is at least [`SWITCH_BELOW`]; else the chart with the largest measure.
+    fn preferred_chart(&self, q: &[f64; N]) -> usize {
+        let main = if self.current == 0 { *q } else { atlas::point(&self.system, self.current, 0, q) };
+        let qualities = (0..self.charts.len()).filter_map(|c| self.quality_at(c, &main).map(|quality| (c, quality)));
+        let (mut carrying, mut any) = (None::<(usize, f64)>, None::<(usize, f64)>);
+        for (chart, quality) in qualities {
+            if chart == 0 && quality >= SWITCH_BELOW {
+                return 0;
             }
-            let Some(there) = self.quality_at(chart, &main) else { continue };
-            if self.carries_momentum[chart] && carrying.is_none_or(|(_, best)| there > best) {
-                carrying = Some((chart, there));
+            if self.carries_momentum[chart] && carrying.is_none_or(|(_, best)| quality > best) {
+                carrying = Some((chart, quality));
             }
-            if there > any.1 {
-                any = (chart, there);
+            if any.is_none_or(|(_, best)| quality > best) {
+                any = Some((chart, quality));
             }
         }
-        let target = match carrying {
-            Some((chart, there)) if there >= RETURN_ABOVE || degraded && there >= SWITCH_BELOW => chart,
-            _ if degraded => any.0,
+        match (carrying, any) {
+            (Some((chart, quality)), _) if quality >= SWITCH_BELOW => chart,
+            (_, Some((chart, _))) => chart,
             _ => self.current,
-        };
+        }
+    }
+
+    /// Moves to the preferred chart at the current point (before a first step).
+    fn choose_chart(&mut self) -> Result<(), Error> {
+        let q = self.chart().progress.config.unwrapped();
+        let target = self.preferred_chart(&q);
         if target != self.current {
             self.switch_to(target)?;
         }

@@ -206,6 +206,19 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
         })
     }
 
+    /// The increment q_{k+1} − q_k the predictor expects for the next step (the sum over its
+    /// sub-steps).
+    fn predicted_increment(&self) -> [f64; N] {
+        equipped!(&self.schemes, e => {
+            let scheme = &e.first().scheme;
+            self.progress.stages.iter().fold([0.0; N], |mut sum, memory| {
+                let dq = scheme.increment(&memory.predictor.predict());
+                sum.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
+                sum
+            })
+        })
+    }
+
     /// The canonical momenta p_k.
     fn p(&self) -> [f64; N] {
         equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&self.progress.momenta))

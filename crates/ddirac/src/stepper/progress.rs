@@ -14,7 +14,7 @@ use crate::scheme::Scheme;
 use crate::{newton, CoordinateKind, Error, Method, Split, System};
 
 /// Everything a step changes: the state of step k, the solver's memory and the run's record.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(super) struct Progress<const N: usize> {
     pub(super) k: usize,
     pub(super) config: Configuration<N>,
@@ -45,7 +45,7 @@ pub(super) struct StageMemory<const N: usize> {
 }
 
 /// What the summary reports: statistics since the record started, and the warnings.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(super) struct Record<const N: usize> {
     /// The step k0 and the state (q, p) the record starts from.
     pub(super) start: (usize, [f64; N], [f64; N]),
@@ -56,6 +56,58 @@ pub(super) struct Record<const N: usize> {
     pub(super) discrete_energy: Accumulator,
     pub(super) newton: NewtonSummary,
     pub(super) warnings: Warnings,
+}
+
+/// `clone_from` reuses the vectors' memory: the stepper of an atlas saves a step's progress into
+/// the same place at every step, without allocating.
+impl<const N: usize> Clone for Progress<N> {
+    fn clone(&self) -> Self {
+        Self {
+            k: self.k,
+            config: self.config.clone(),
+            momenta: self.momenta,
+            p_now: self.p_now,
+            stages: self.stages.clone(),
+            monitor: self.monitor.clone(),
+            last_energy: self.last_energy,
+            record: self.record.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.k = source.k;
+        self.config.clone_from(&source.config);
+        self.momenta = source.momenta;
+        self.p_now = source.p_now;
+        self.stages.clone_from(&source.stages);
+        self.monitor.clone_from(&source.monitor);
+        self.last_energy = source.last_energy;
+        self.record.clone_from(&source.record);
+    }
+}
+
+impl<const N: usize> Clone for Record<N> {
+    fn clone(&self) -> Self {
+        Self {
+            start: self.start,
+            j0: self.j0.clone(),
+            max_drift: self.max_drift,
+            energy: self.energy,
+            discrete_energy: self.discrete_energy,
+            newton: self.newton,
+            warnings: self.warnings.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.start = source.start;
+        self.j0.clone_from(&source.j0);
+        self.max_drift = source.max_drift;
+        self.energy = source.energy;
+        self.discrete_energy = source.discrete_energy;
+        self.newton = source.newton;
+        self.warnings.0.clone_from(&source.warnings.0);
+    }
 }
 
 impl<const N: usize> Record<N> {
