@@ -101,7 +101,7 @@ pub fn declare(source: &SpecSource, table: &Lists<'_>, span: Range<usize>) -> Re
         shape.iter().map(|x| (x, Role::Shape)).chain(group.iter().map(|g| (g, Role::Group))).collect();
     if declared.is_empty() {
         return Err(source
-            .error(Some(span), format!("`{}` declares no coordinates", table.table), "this table")
+            .error(Some(span), format!("the `[{}]` table declares no coordinates", table.table), "this table")
             .with_help("list the coordinates in `shape = [...]` and the symmetry's coordinates in `group = [...]`"));
     }
     let names: Vec<&str> = declared.iter().map(|(n, _)| n.get_ref().as_str()).collect();
