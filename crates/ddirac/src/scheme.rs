@@ -208,6 +208,19 @@ impl<const N: usize> StepDerivatives<N> {
         }
     }
 
+    /// The derivatives of the same scheme with step size `step` (a composition's other sub-step
+    /// sizes), without tracing again: compiled programs of an unguarded trace that take h as a runtime
+    /// input, with h set to `step`. `None` otherwise (dual numbers cost nothing to prepare; a
+    /// closed-form step holds h as a constant).
+    pub fn for_step(&self, step: f64) -> Option<Self> {
+        match self {
+            Self::Compiled { pair, linear: None } if pair.is_unguarded() => {
+                pair.with_step(step).map(|pair| Self::Compiled { pair: Box::new(pair), linear: None })
+            }
+            _ => None,
+        }
+    }
+
     /// The compiled closed-form step, if the run has one.
     #[inline]
     pub fn linear_step(&self) -> Option<&LinearStep<N>> {

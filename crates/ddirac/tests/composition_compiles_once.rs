@@ -32,3 +32,22 @@ fn the_sub_steps_of_a_composition_share_one_compile() {
         assert_eq!(compiles, [2, 0, 0], "reduced {reduced}");
     }
 }
+
+/// The sub-steps that share the first one's trace (its programs with their own h as input) step as
+/// dual numbers do at each sub-step size: a run of order 8 ends where the same run on dual numbers
+/// ends, to round-off.
+#[test]
+fn the_sub_steps_sharing_one_trace_step_as_dual_numbers_do() {
+    let system = DoubleSphericalPendulum::default();
+    let problem = Problem { steps: 200, ..DoubleSphericalPendulum::paper_problem(10_000) };
+    for composition in [Composition::KahanLi17, Composition::Suzuki5] {
+        let end = |differentiation| {
+            let method = Method { composition, differentiation, atlas: false, ..Method::default() };
+            solve(&system, &problem, &method, &OutputOptions::default()).unwrap().summary.final_q
+        };
+        let (compiled, dual) = (end(Differentiation::Compiled), end(Differentiation::Dual));
+        let apart = compiled.iter().zip(&dual).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("{composition:?}: compiled against dual numbers {apart:.1e}");
+        assert!(apart < 1e-11, "{composition:?}: {apart:e}");
+    }
+}

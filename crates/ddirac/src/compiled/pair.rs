@@ -16,6 +16,7 @@ use super::executable::Executable;
 use super::JitError;
 use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
+use crate::RuntimeInput;
 
 /// Why derivatives could not be compiled.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -61,6 +62,8 @@ pub struct CompiledPair<const N: usize> {
     guards: Vec<u8>,
     /// Instruction counts of the two programs (without, with the mixed block).
     pub instructions: (usize, usize),
+    /// The position among the inputs of the step size h, when it is a runtime input.
+    step_input: Option<usize>,
     buffers: RefCell<Buffers>,
 }
 
@@ -105,15 +108,35 @@ impl<const N: usize> CompiledPair<N> {
             )));
         }
         let instructions = (first.instructions.len(), mixed.instructions.len());
+        let step_input = runtime.iter().position(|(input, _)| *input == RuntimeInput::Step).map(|i| 2 * N + i);
         Ok(Self {
             first: super::cache::shared(first)?,
             mixed: super::cache::shared(mixed)?,
             guards: guards.clone(),
             instructions,
+            step_input,
             buffers: RefCell::new(Buffers {
                 inputs: [0.0; N].iter().chain(&[0.0; N]).copied().chain(runtime.iter().map(|(_, v)| *v)).collect(),
                 outputs: vec![0.0; 1 + 2 * N + N * N + g],
             }),
+        })
+    }
+
+    /// The same programs with the step size h set to `step`, when h is a runtime input of them: what
+    /// a trace of the same function with step `step` would give, without tracing again (the
+    /// sub-steps of a composition). `None` where h is a constant of the programs.
+    pub fn with_step(&self, step: f64) -> Option<Self> {
+        let slot = self.step_input?;
+        let buffers = self.buffers.borrow();
+        let mut inputs = buffers.inputs.clone();
+        inputs[slot] = step;
+        Some(Self {
+            first: Arc::clone(&self.first),
+            mixed: Arc::clone(&self.mixed),
+            guards: self.guards.clone(),
+            instructions: self.instructions,
+            step_input: self.step_input,
+            buffers: RefCell::new(Buffers { inputs, outputs: buffers.outputs.clone() }),
         })
     }
 

@@ -473,18 +473,26 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
         // γ = 1 gives the increment itself, bit for bit.
         let dq = first.dq.map(|d| gamma * d);
         let momenta = scheme.momenta_from_p(&first.p);
-        let (derivatives, path) = StepDerivatives::new(
-            &scheme,
-            method.differentiation,
-            steps,
-            &scheme.base(first.q.base()),
-            &scheme.unknowns(&dq).into(),
-            &momenta,
-        )
-        .map_err(Error::NotCompiled)?;
+        let base = scheme.base(first.q.base());
+        let prepare = |dq: &[f64; N]| {
+            StepDerivatives::new(&scheme, method.differentiation, steps, &base, &scheme.unknowns(dq).into(), &momenta)
+        };
+        // A long step's predicted point may leave the chart's domain (the disc of a hemisphere's
+        // projection) where the step itself, solved by Newton's method or subdivided, does not: the
+        // derivatives are then prepared at the step's start (a zero increment), a point of the domain.
+        let (derivatives, path) = prepare(&dq)
+            .or_else(|e| if dq.iter().any(|d| *d != 0.0) { prepare(&[0.0; N]).map_err(|_| e) } else { Err(e) })
+            .map_err(Error::NotCompiled)?;
         let (equations, prepared) = (scheme.equations(), momenta);
         let renewable = derivatives.independent_of_first_step(method.differentiation, steps);
         Ok((Self { equations, scheme, derivatives, prepared, closed_form: true, renewable }, path))
+    }
+
+    /// The scheme of another sub-step with `derivatives` shared from the scheme `other` prepared
+    /// ([`StepDerivatives::for_step`]: the same programs with the other sub-step's h).
+    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<N>, first: &FirstStep<N>) -> Self {
+        let (equations, prepared) = (scheme.equations(), scheme.momenta_from_p(&first.p));
+        Self { equations, scheme, derivatives, prepared, closed_form: true, renewable: other.renewable }
     }
 
     /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use super::{Equipped, FirstStep};
 use crate::diagnostics::DerivativePath;
 use crate::scheme::Scheme;
-use crate::{Error, Input, Method, Rule};
+use crate::{Differentiation, Error, Input, Method, Rule};
 
 /// Pivots below this fraction of the Jacobian's largest entry count as zero in the test that the
 /// step equations determine the motion ([`Stages::first_step_rank`]).
@@ -63,19 +63,28 @@ impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
                 }
             })
             .collect();
-        let mut paths = Vec::new();
-        let distinct = values
-            .iter()
-            .enumerate()
-            .map(|(i, &g)| {
-                let count = sequence.iter().filter(|&&j| j == i).count();
-                // γ = 1 gives h itself, bit for bit.
-                let (equipped, path) = Equipped::new(scheme(g * h)?, method, steps * count, first, g)?;
-                paths.push(path);
-                Ok(equipped)
-            })
-            .collect::<Result<Vec<_>, Error>>()?;
-        let path = paths.swap_remove(0);
+        let count = |i: usize| sequence.iter().filter(|&&j| j == i).count();
+        let mut distinct: Vec<Equipped<Sc, N>> = Vec::with_capacity(values.len());
+        let mut path = None;
+        for (i, &g) in values.iter().enumerate() {
+            // γ = 1 gives h itself, bit for bit.
+            let (step, scheme) = (g * h, scheme(g * h)?);
+            // The first sub-step's compiled programs serve the others with their own h, where
+            // preparing them anew would choose compiled derivatives too (asked for, or at least as
+            // many evaluations as the first's under `auto`): one trace for the whole composition.
+            let shares = method.differentiation == Differentiation::Compiled || count(i) >= count(0);
+            let shared = distinct.first().filter(|_| shares).and_then(|e| e.derivatives.for_step(step));
+            let equipped = match shared {
+                Some(derivatives) => Equipped::sharing(&distinct[0], scheme, derivatives, first),
+                None => {
+                    let (equipped, prepared) = Equipped::new(scheme, method, steps * count(i), first, g)?;
+                    path.get_or_insert(prepared);
+                    equipped
+                }
+            };
+            distinct.push(equipped);
+        }
+        let path = path.expect("the first sub-step is prepared");
         Ok((Self { distinct, sequence, gammas, h, subdivided: Mutex::new(Vec::new()) }, path))
     }
 
