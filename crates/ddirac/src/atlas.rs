@@ -78,6 +78,9 @@ impl<S: System<N>, const N: usize> System<N> for InChart<S, N> {
         if self.chart == 0 {
             return self.system.lagrangian(q, v);
         }
+        if let Some(written) = self.system.chart_lagrangian(self.chart, q, v) {
+            return written;
+        }
         // (φ(q), Dφ(q) v) from one evaluation of φ on dual numbers q + ε v.
         let lifted: [Dual<D>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
         let image = self.system.chart_to_main(self.chart, &lifted);

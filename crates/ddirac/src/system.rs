@@ -116,6 +116,14 @@ pub trait System<const N: usize> {
         *q
     }
 
+    /// The Lagrangian L ∘ Tφ of chart `chart` (≥ 1) written out, where the system has a cheaper form
+    /// of it than the composition; `None`, the default, means the composition
+    /// ([`crate::atlas::InChart`]). It must be the same function: a system that gives it holds it
+    /// against the composition in a test, as a hand-written derivative is held against AD.
+    fn chart_lagrangian<D: Scalar>(&self, _chart: usize, _q: &[D; N], _v: &[D; N]) -> Option<D> {
+        None
+    }
+
     /// How good chart `chart` (0 for the main chart) is at the point whose coordinates in it are `q`:
     /// about 1 where the chart is regular, falling to 0 at its singular set (|sin θ| for spherical
     /// coordinates with polar angle θ).
@@ -237,6 +245,11 @@ impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
     #[inline(always)]
     fn main_to_chart<D: Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
         (**self).main_to_chart(chart, q)
+    }
+
+    #[inline(always)]
+    fn chart_lagrangian<D: Scalar>(&self, chart: usize, q: &[D; N], v: &[D; N]) -> Option<D> {
+        (**self).chart_lagrangian(chart, q, v)
     }
 
     fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {

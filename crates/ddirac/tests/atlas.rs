@@ -160,3 +160,54 @@ fn a_run_of_a_hundred_thousand_switches_keeps_the_momentum_map_and_the_energy_bo
     assert!(energy < polar, "{energy:e} against {polar:e}");
     assert!(momentum < 1e-9, "{momentum:e}");
 }
+
+/// The composition L ∘ Tφ of chart `chart` at (q, v), computed as `InChart` computes it without a
+/// written form: φ on dual numbers q + ε v.
+fn composed<S: System<N>, D: ddirac::Scalar, const N: usize>(system: &S, chart: usize, q: &[D; N], v: &[D; N]) -> D {
+    use ddirac::num_dual::Dual;
+    let lifted: [Dual<D>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
+    let image = system.chart_to_main(chart, &lifted);
+    system.lagrangian(&image.map(|x| x.re), &image.map(|x| x.eps))
+}
+
+/// The double spherical pendulum writes the Lagrangian of its charts of both bobs near the vertical
+/// out (unit vectors instead of the spherical angles, a fifth of the operations): it is the
+/// composition L ∘ Tφ, in value and in every first derivative (so in every derivative the steps use),
+/// at points all over each of the four charts.
+#[test]
+fn the_written_lagrangians_of_the_double_pendulum_s_caps_are_the_composition() {
+    use ddirac::num_dual::Dual64;
+    let system = DoubleSphericalPendulum::default();
+    let mut worst = 0.0f64;
+    for chart in 3..=6 {
+        for k in 0..50 {
+            let s = |i: usize| ((k * 8 + i) as f64 * 0.618_033_988_75).fract() * 2.0 - 1.0;
+            // Points of the open discs (radius up to 0.95), velocities of either sign.
+            let q = [0.67 * s(0), 0.67 * s(1), 0.67 * s(2), 0.67 * s(3)];
+            let v = [s(4), s(5), s(6), s(7)];
+            let written = system.chart_lagrangian(chart, &q, &v).expect("charts 3 to 6 are written out");
+            let reference = composed(&system, chart, &q, &v);
+            let scale = reference.abs().max(1.0);
+            worst = worst.max((written - reference).abs() / scale);
+            for direction in 0..8 {
+                let lift = |x: &[f64; 4], offset: usize| -> [Dual64; 4] {
+                    std::array::from_fn(|i| {
+                        if i + offset == direction {
+                            Dual64::new(x[i], 1.0)
+                        } else {
+                            Dual64::from(x[i])
+                        }
+                    })
+                };
+                let (qd, vd) = (lift(&q, 0), lift(&v, 4));
+                let a = system.chart_lagrangian(chart, &qd, &vd).unwrap().eps;
+                let b = composed(&system, chart, &qd, &vd).eps;
+                worst = worst.max((a - b).abs() / scale);
+            }
+        }
+    }
+    eprintln!("written against composed: {worst:.1e} (relative)");
+    assert!(worst < 1e-12, "{worst:e}");
+    // The other charts keep the composition.
+    assert!(system.chart_lagrangian(1, &[0.1; 4], &[0.1; 4]).is_none());
+}

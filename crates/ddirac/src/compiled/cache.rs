@@ -8,11 +8,12 @@
 //! the program itself, so that such runs — the step sizes of a convergence study, the members of an
 //! ensemble — compile once.
 
-use std::collections::{HashMap, VecDeque};
+use std::collections::VecDeque;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use super::executable::Executable;
+use super::hasher::FxHashMap;
 use super::{CompileError, Program};
 
 /// How many distinct programs keep their native code.
@@ -20,7 +21,7 @@ pub const CAPACITY: usize = 32;
 
 #[derive(Default)]
 struct Cache {
-    prepared: HashMap<Program, Arc<Executable>>,
+    prepared: FxHashMap<Program, Arc<Executable>>,
     /// Programs in the order they were compiled, oldest first.
     order: VecDeque<Program>,
 }

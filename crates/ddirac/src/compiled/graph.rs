@@ -23,8 +23,7 @@
 //! Each node also carries its value at the point the graph was built at (the inputs' values), so that
 //! a trace can answer what a value is where that is harmless.
 
-use std::collections::HashMap;
-
+use super::hasher::FxHashMap;
 use super::program::{Binary, Instruction, Program, Unary};
 
 /// The index of a node, which is also its register in an extracted program.
@@ -44,7 +43,7 @@ pub(crate) struct Graph {
     nodes: Vec<Instruction>,
     values: Vec<f64>,
     inputs: Vec<f64>,
-    interned: HashMap<Instruction, Node>,
+    interned: FxHashMap<Instruction, Node>,
 }
 
 impl Graph {

@@ -8,6 +8,7 @@ mod cost;
 mod derivative;
 mod executable;
 pub(crate) mod graph;
+mod hasher;
 mod interpreter;
 #[cfg(feature = "jit")]
 pub mod jit;

@@ -232,6 +232,27 @@ impl System<4> for DoubleSphericalPendulum {
         }
     }
 
+    fn chart_lagrangian<D: Scalar>(&self, chart: usize, q: &[D; 4], v: &[D; 4]) -> Option<D> {
+        // Charts 3 to 6: the bobs' directions u = (x, y, z), z = ∓√(1 − x² − y²) on the lower or upper
+        // hemisphere (z = cos φ), u̇ = (ẋ, ẏ, −(x ẋ + y ẏ)/z); the paper's L is
+        // ½ m1 l1² |u̇1|² + ½ m2 |l1 u̇1 + l2 u̇2|² − g m1 l1 z1 − g m2 (l1 z1 + l2 z2). The composition
+        // through the spherical angles costs about five times as many operations.
+        let (_, lower1, lower2) = *CAPS.get(chart.checked_sub(3)?)?;
+        let Self { m1, m2, l1, l2, g } = *self;
+        let bob = |x: D, y: D, vx: D, vy: D, lower: bool| {
+            let w = (-(x * x + y * y) + 1.0).sqrt();
+            let z = if lower { -w } else { w };
+            (z, [vx, vy, -(x * vx + y * vy) / z])
+        };
+        let (z1, u1) = bob(q[0], q[1], v[0], v[1], lower1);
+        let (z2, u2) = bob(q[2], q[3], v[2], v[3], lower2);
+        let dot = |a: &[D; 3], b: &[D; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let kinetic = dot(&u1, &u1) * (0.5 * (m1 + m2) * l1 * l1)
+            + dot(&u2, &u2) * (0.5 * m2 * l2 * l2)
+            + dot(&u1, &u2) * (m2 * l1 * l2);
+        Some(kinetic - z1 * (g * (m1 + m2) * l1) - z2 * (g * m2 * l2))
+    }
+
     fn chart_quality(&self, chart: usize, q: &[f64; 4]) -> f64 {
         let edge = |x: f64, y: f64| (1.0 - x * x - y * y).max(0.0).sqrt();
         let (first, second) = match chart {
