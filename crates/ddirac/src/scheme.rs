@@ -8,7 +8,9 @@ use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
-use crate::compiled::{pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, Traced};
+use crate::compiled::{
+    self, pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, Traced,
+};
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
@@ -161,7 +163,25 @@ impl<const N: usize> StepDerivatives<N> {
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
             let StepEquations { sign, advances, eliminable } = &equations;
-            let linear = LinearStep::new(generating, base, z, momenta, sign, advances, eliminable)?;
+            // What the closed form is sought with besides the point: the runtime inputs' values, the
+            // conserved momenta (constants of it), the signs and the roles of the unknowns.
+            let conserved = (0..N).filter(|&i| !advances[i]).map(|i| momenta[i].to_bits());
+            let runtime = programs.runtime.iter().map(|(_, v)| v.to_bits());
+            let roles = (0..N).map(|i| sign[i].to_bits() ^ u64::from(advances[i]) << 1 ^ u64::from(eliminable[i]));
+            let key = (programs.mixed.clone(), runtime.chain(conserved).chain(roles).collect::<Vec<u64>>());
+            let linear = if compiled::known_not_affine(&key) {
+                None
+            } else {
+                match LinearStep::attempt(generating, base, z, momenta, sign, advances, eliminable)? {
+                    Ok(linear) => Some(linear),
+                    Err(refusal) => {
+                        if refusal == compiled::Refusal::NotAffine {
+                            compiled::remember_not_affine(key);
+                        }
+                        None
+                    }
+                }
+            };
             if let Some(linear) = &linear {
                 check_linear(scheme, &equations, linear, base, momenta)?;
             }

@@ -29,9 +29,12 @@
 //! the full equations, which the stepper checks against the Newton tolerance: a step whose fixed
 //! pivot order has become poor fails that test and is finished by Newton's method.
 
+use std::sync::{Mutex, PoisonError};
+
 use super::derivative::{directional, pair_graph, PairGraph};
 use super::executable::Executable;
 use super::graph::{Graph, Node};
+use super::hasher::FxHashMap;
 use super::{CompileError, Instruction, Program, Traced};
 
 /// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
@@ -94,11 +97,28 @@ impl<const N: usize> LinearStep<N> {
     where
         F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
     {
-        let Some(program) = step_program(pair_graph(f, base, z, false)?, momenta, sign, advances, eliminable) else {
-            return Ok(None);
+        Ok(Self::attempt(f, base, z, momenta, sign, advances, eliminable)?.ok())
+    }
+
+    /// [`LinearStep::new`], saying why there is no closed form.
+    pub(crate) fn attempt<F>(
+        f: F,
+        base: &[f64; N],
+        z: &[f64; N],
+        momenta: &[f64; N],
+        sign: &[f64; N],
+        advances: &[bool; N],
+        eliminable: &[bool; N],
+    ) -> Result<Result<Self, Refusal>, CompileError>
+    where
+        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    {
+        let program = match step_program(pair_graph(f, base, z, false)?, momenta, sign, advances, eliminable) {
+            Ok(program) => program,
+            Err(refusal) => return Ok(Err(refusal)),
         };
         let instructions = program.instructions.len();
-        Ok(Some(Self { program: super::cache::shared(&program)?, instructions }))
+        Ok(Ok(Self { program: super::cache::shared(&program)?, instructions }))
     }
 
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are
@@ -118,6 +138,41 @@ impl<const N: usize> LinearStep<N> {
     }
 }
 
+/// Why a step has no closed form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Refusal {
+    /// The step equations are not affine in the unknowns (after eliminating γ): a property of the
+    /// function, wherever it is traced.
+    NotAffine,
+    /// A guard, a (nearly) zero pivot or a value that is not finite at the point of the trace.
+    AtThisPoint,
+}
+
+/// The step equations found not affine ([`Refusal::NotAffine`]), by their compiled derivatives (the
+/// programs with h and the parameters as runtime inputs), the values of those inputs, and the
+/// conserved momenta, signs and roles the closed form was sought with: a run of the same equations
+/// does not seek it again (it costs as much as tracing them, about a third of a run's set-up).
+static NOT_AFFINE: Mutex<Option<FxHashMap<(Program, Vec<u64>), ()>>> = Mutex::new(None);
+
+/// How many verdicts [`NOT_AFFINE`] keeps before it starts anew.
+const NOT_AFFINE_CAPACITY: usize = 64;
+
+/// Whether the equations of `key` were found not affine.
+pub(crate) fn known_not_affine(key: &(Program, Vec<u64>)) -> bool {
+    let guard = NOT_AFFINE.lock().unwrap_or_else(PoisonError::into_inner);
+    guard.as_ref().is_some_and(|found| found.contains_key(key))
+}
+
+/// Records that the equations of `key` are not affine.
+pub(crate) fn remember_not_affine(key: (Program, Vec<u64>)) {
+    let mut guard = NOT_AFFINE.lock().unwrap_or_else(PoisonError::into_inner);
+    let found = guard.get_or_insert_with(FxHashMap::default);
+    if found.len() >= NOT_AFFINE_CAPACITY {
+        found.clear();
+    }
+    found.insert(key, ());
+}
+
 /// The program of the closed-form step: inputs (base, m), outputs (z, f, r, m').
 fn step_program<const N: usize>(
     pair: PairGraph,
@@ -125,11 +180,11 @@ fn step_program<const N: usize>(
     sign: &[f64; N],
     advances: &[bool; N],
     eliminable: &[bool; N],
-) -> Option<Program> {
+) -> Result<Program, Refusal> {
     let PairGraph { mut graph, value, da, db, guards, .. } = pair;
     // A guarded trace holds on part of the space only; the closed form would have to check its guards.
     if !guards.is_empty() {
-        return None;
+        return Err(Refusal::AtThisPoint);
     }
     let g = &mut graph;
     // Momenta that do not advance (μ) are conserved exactly: constants of the run.
@@ -184,9 +239,9 @@ fn step_program<const N: usize>(
     let momenta_next = (0..N).map(|i| if advances[i] { at_z[1 + N + i] } else { m[i] });
     let outputs: Vec<Node> = z.into_iter().chain(at_z[..=N].iter().copied()).chain(momenta_next).collect();
     if !outputs.iter().all(|&o| graph.value(o).is_finite()) {
-        return None;
+        return Err(Refusal::AtThisPoint);
     }
-    without_unknowns(graph.program(&outputs), N)
+    without_unknowns(graph.program(&outputs), N).ok_or(Refusal::AtThisPoint)
 }
 
 /// `program` with its inputs (base, b, m) renumbered to (base, m): the solution reads no b.
@@ -208,11 +263,12 @@ fn without_unknowns(mut program: Program, n: usize) -> Option<Program> {
 /// the rows are affine in them: −J⁻¹ rows(b_i = 0), with J = ∂rows/∂b_i constant in them. Other
 /// unknowns the rows read stay variables of the result. `None` if the rows are not affine in the
 /// unknowns or J is singular at the build point.
-fn solve_affine(g: &mut Graph, rows: &[Node], unknowns: &[usize], n: usize) -> Option<Vec<Node>> {
-    let wrt: Vec<Node> = unknowns.iter().map(|&i| g.input_node(n + i)).collect::<Option<_>>()?;
+fn solve_affine(g: &mut Graph, rows: &[Node], unknowns: &[usize], n: usize) -> Result<Vec<Node>, Refusal> {
+    let wrt: Vec<Node> =
+        unknowns.iter().map(|&i| g.input_node(n + i)).collect::<Option<_>>().ok_or(Refusal::AtThisPoint)?;
     let j = jacobian(g, rows, &wrt);
     if !constant_in(g, &j.concat(), &wrt) {
-        return None;
+        return Err(Refusal::NotAffine);
     }
     let zero = g.constant(0.0);
     let mut replace = vec![None; 3 * n];
@@ -222,7 +278,7 @@ fn solve_affine(g: &mut Graph, rows: &[Node], unknowns: &[usize], n: usize) -> O
     let at_zero = g.replace_inputs(rows, &replace);
     let rhs = negated(g, &at_zero);
     let j = at(g, j, &replace);
-    eliminate(g, j, rhs)
+    eliminate(g, j, rhs).ok_or(Refusal::AtThisPoint)
 }
 
 /// Whether `nodes` are constant in the input nodes `wrt`: they do not read them, or (when rounding
