@@ -152,19 +152,23 @@ pub(crate) enum Refusal {
 /// programs with h and the parameters as runtime inputs), the values of those inputs, and the
 /// conserved momenta, signs and roles the closed form was sought with: a run of the same equations
 /// does not seek it again (it costs as much as tracing them, about a third of a run's set-up).
-static NOT_AFFINE: Mutex<Option<FxHashMap<(Program, Vec<u64>), ()>>> = Mutex::new(None);
+static NOT_AFFINE: Mutex<Option<FxHashMap<EquationsKey, ()>>> = Mutex::new(None);
+
+/// Step equations as [`NOT_AFFINE`] knows them: their compiled derivatives and the bits of the
+/// values they were sought with.
+pub(crate) type EquationsKey = (Program, Vec<u64>);
 
 /// How many verdicts [`NOT_AFFINE`] keeps before it starts anew.
 const NOT_AFFINE_CAPACITY: usize = 64;
 
 /// Whether the equations of `key` were found not affine.
-pub(crate) fn known_not_affine(key: &(Program, Vec<u64>)) -> bool {
+pub(crate) fn known_not_affine(key: &EquationsKey) -> bool {
     let guard = NOT_AFFINE.lock().unwrap_or_else(PoisonError::into_inner);
     guard.as_ref().is_some_and(|found| found.contains_key(key))
 }
 
 /// Records that the equations of `key` are not affine.
-pub(crate) fn remember_not_affine(key: (Program, Vec<u64>)) {
+pub(crate) fn remember_not_affine(key: EquationsKey) {
     let mut guard = NOT_AFFINE.lock().unwrap_or_else(PoisonError::into_inner);
     let found = guard.get_or_insert_with(FxHashMap::default);
     if found.len() >= NOT_AFFINE_CAPACITY {
