@@ -9,7 +9,8 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
 use crate::compiled::{
-    self, pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, Traced,
+    self, pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, PairPrograms,
+    Refusal, Traced,
 };
 use crate::{DerivativePath, Differentiation};
 
@@ -162,26 +163,7 @@ impl<const N: usize> StepDerivatives<N> {
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
-            let StepEquations { sign, advances, eliminable } = &equations;
-            // What the closed form is sought with besides the point: the runtime inputs' values, the
-            // conserved momenta (constants of it), the signs and the roles of the unknowns.
-            let conserved = (0..N).filter(|&i| !advances[i]).map(|i| momenta[i].to_bits());
-            let runtime = programs.runtime.iter().map(|(_, v)| v.to_bits());
-            let roles = (0..N).map(|i| sign[i].to_bits() ^ u64::from(advances[i]) << 1 ^ u64::from(eliminable[i]));
-            let key = (programs.mixed.clone(), runtime.chain(conserved).chain(roles).collect::<Vec<u64>>());
-            let linear = if compiled::known_not_affine(&key) {
-                None
-            } else {
-                match LinearStep::attempt(generating, base, z, momenta, sign, advances, eliminable)? {
-                    Ok(linear) => Some(linear),
-                    Err(refusal) => {
-                        if refusal == compiled::Refusal::NotAffine {
-                            compiled::remember_not_affine(key);
-                        }
-                        None
-                    }
-                }
-            };
+            let linear = closed_form(generating, &programs, &equations, base, z, momenta)?;
             if let Some(linear) = &linear {
                 check_linear(scheme, &equations, linear, base, momenta)?;
             }
@@ -267,6 +249,40 @@ impl<const N: usize> StepDerivatives<N> {
         // Where a guard of the trace fails (another branch of a comparison), dual numbers answer.
         compiled
             .unwrap_or_else(|| ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed))
+    }
+}
+
+/// The closed-form step of `equations` ([`LinearStep`]), unless they were found not affine before:
+/// equations are known by their compiled derivatives `programs` (h and the parameters as runtime
+/// inputs) and what the closed form is sought with besides the point (the runtime inputs' values, the
+/// conserved momenta, which are constants of it, the signs and the roles of the unknowns).
+fn closed_form<const N: usize, F>(
+    generating: F,
+    programs: &PairPrograms,
+    equations: &StepEquations<N>,
+    base: &[f64; N],
+    z: &[f64; N],
+    momenta: &[f64; N],
+) -> Result<Option<LinearStep<N>>, CompileError>
+where
+    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+{
+    let StepEquations { sign, advances, eliminable } = equations;
+    let conserved = (0..N).filter(|&i| !advances[i]).map(|i| momenta[i].to_bits());
+    let runtime = programs.runtime.iter().map(|(_, v)| v.to_bits());
+    let roles = (0..N).map(|i| sign[i].to_bits() ^ u64::from(advances[i]) << 1 ^ u64::from(eliminable[i]));
+    let key = (programs.mixed.clone(), runtime.chain(conserved).chain(roles).collect::<Vec<u64>>());
+    if compiled::known_not_affine(&key) {
+        return Ok(None);
+    }
+    match LinearStep::new(generating, base, z, momenta, sign, advances, eliminable)? {
+        Ok(linear) => Ok(Some(linear)),
+        Err(refusal) => {
+            if refusal == Refusal::NotAffine {
+                compiled::remember_not_affine(key);
+            }
+            Ok(None)
+        }
     }
 }
 

@@ -83,25 +83,10 @@ impl<const N: usize> LinearStep<N> {
     /// Traces the generating function `f` at (`base`, 0, `z`) with momenta `momenta` and compiles its
     /// closed-form step, for residual signs `sign`, advancing momenta `advances` and group unknowns
     /// `eliminable` (see the module
-    /// documentation). `None` when the equations are not linear in the unknowns (after eliminating
-    /// γ), or a pivot or an output is zero or not finite at this first step.
+    /// documentation). [`Refusal::NotAffine`] when the equations are not linear in the unknowns
+    /// (after eliminating γ), [`Refusal::AtThisPoint`] when a pivot or an output is zero or not
+    /// finite at this first step (or the trace has guards).
     pub fn new<F>(
-        f: F,
-        base: &[f64; N],
-        z: &[f64; N],
-        momenta: &[f64; N],
-        sign: &[f64; N],
-        advances: &[bool; N],
-        eliminable: &[bool; N],
-    ) -> Result<Option<Self>, CompileError>
-    where
-        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
-    {
-        Ok(Self::attempt(f, base, z, momenta, sign, advances, eliminable)?.ok())
-    }
-
-    /// [`LinearStep::new`], saying why there is no closed form.
-    pub(crate) fn attempt<F>(
         f: F,
         base: &[f64; N],
         z: &[f64; N],
@@ -140,7 +125,7 @@ impl<const N: usize> LinearStep<N> {
 
 /// Why a step has no closed form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Refusal {
+pub enum Refusal {
     /// The step equations are not affine in the unknowns (after eliminating γ): a property of the
     /// function, wherever it is traced.
     NotAffine,
@@ -423,9 +408,8 @@ mod tests {
     fn nonlinear_equations_have_no_closed_form() {
         // r_0 = b0² + m0.
         let square = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] * b[0] + a[1] * b[1];
-        assert!(LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &[true; 2], &NO_GROUP)
-            .unwrap()
-            .is_none());
+        let step = LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &[true; 2], &NO_GROUP);
+        assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
         // Linear in γ, but r_x = 3 b0 + γ*² + m0 is not linear in b0 once γ* = (m1 − b0) / 4 is in.
         let quadratic_after = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
             a[0] * (b[0] * 3.0 + b[1] * b[1]) + a[1] * (b[1] * 4.0 + b[0])
@@ -439,19 +423,19 @@ mod tests {
             &[true, false],
             &[false, true],
         );
-        assert!(step.unwrap().is_none());
+        assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
         // Not linear in γ.
         let cubic = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] + a[1] * b[1] * b[1] * b[1];
         let step =
             LinearStep::new(cubic, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[true, false], &[false, true]);
-        assert!(step.unwrap().is_none());
+        assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
     }
 
     #[test]
     fn a_singular_system_has_no_closed_form() {
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| (a[0] + a[1]) * (b[0] + b[1]);
-        assert!(LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP)
-            .unwrap()
-            .is_none());
+        // Affine, but its Jacobian is singular here: a property of the point, not of the equations.
+        let step = LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP);
+        assert_eq!(step.unwrap().err(), Some(Refusal::AtThisPoint));
     }
 }

@@ -23,8 +23,8 @@ pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairProgr
 pub use interpreter::Interpreter;
 #[cfg(feature = "jit")]
 pub use jit::{JitError, NativeProgram};
-pub(crate) use linear_step::{known_not_affine, remember_not_affine, Refusal};
-pub use linear_step::{LinearSolution, LinearStep};
+pub(crate) use linear_step::{known_not_affine, remember_not_affine};
+pub use linear_step::{LinearSolution, LinearStep, Refusal};
 pub use pair::{CompileError, CompiledPair};
 pub use program::{Binary, Instruction, MalformedProgram, Program, Register, Unary};
 pub use trace::{NotCompiled, Traced};
