@@ -187,8 +187,10 @@ pub fn check<S: System<N>, const N: usize>(
     problem: &Problem,
     method: &Method,
 ) -> Result<CheckReport, Error> {
-    let setup = Setup::new(system, problem, method)?;
-    Ok(findings(system, problem, method, &setup))
+    crate::stack::enough::<N, _>(|| {
+        let setup = Setup::new(system, problem, method)?;
+        Ok(findings(system, problem, method, &setup))
+    })
 }
 
 /// The findings of [`check`] for a run already set up.

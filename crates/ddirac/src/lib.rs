@@ -46,6 +46,8 @@ pub mod reduction;
 pub mod sampling;
 mod scalar;
 mod scheme;
+mod sizes;
+pub mod stack;
 mod stepper;
 mod system;
 pub mod systems;
@@ -65,6 +67,7 @@ pub use num_dual;
 pub use problem::{Differentiation, InitialData, InitialMomentum, Method, OutputOptions, Problem, Variant};
 pub use reduction::connection::Connection;
 pub use scalar::{RuntimeInput, Scalar};
+pub use sizes::{sizes_text, SIZES};
 pub use stepper::{
     OwnedRow, State, StepReport, Stepper, IMPLAUSIBLE_ENERGY_CHANGE, LEGENDRE_DROP, MAX_ANGLE_STEP, MAX_SUBDIVISION,
 };

@@ -404,7 +404,7 @@ fn system_declarations_are_checked() {
     };
     assert_eq!(
         many.into_dyn().err().map(|e| e.to_string()).as_deref(),
-        Some("the system has 17 coordinates; at most 16 are supported by the type-erased layer")
+        Some("the system has 17 coordinates; text systems are built for 1–16, 20, 24, 32, 40, 50 coordinates")
     );
     let sixteen = ExpressionSpec {
         coordinates: (0..16).map(|i| Coordinate::shape(&format!("q{i}"))).collect(),

@@ -318,13 +318,11 @@ pub enum ExpressionError {
         /// Coordinates declared.
         found: usize,
     },
-    /// More coordinates than the type-erased layer supports.
-    #[error("the system has {found} coordinates; at most {limit} are supported by the type-erased layer")]
-    TooManyCoordinates {
+    /// A number of coordinates the type-erased layer is not built for (see [`crate::SIZES`]).
+    #[error("the system has {found} coordinates; text systems are built for {} coordinates", crate::sizes_text())]
+    UnsupportedSize {
         /// Coordinates declared.
         found: usize,
-        /// The limit.
-        limit: usize,
     },
 }
 
@@ -349,7 +347,7 @@ impl ExpressionError {
             | ExpressionError::MissingQuality
             | ExpressionError::ChartDimension { .. }
             | ExpressionError::Dimension { .. }
-            | ExpressionError::TooManyCoordinates { .. } => None,
+            | ExpressionError::UnsupportedSize { .. } => None,
         }
     }
 

@@ -75,7 +75,7 @@ pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use functions::FUNCTIONS;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};
-pub use system::{ExpressionSpec, ExpressionSystem, MAX_DYN_COORDINATES};
+pub use system::{ExpressionSpec, ExpressionSystem};
 
 /// A byte range `start..end` in a source text.
 ///

@@ -12,9 +12,6 @@ use super::compile::closest;
 use super::{CompiledExpression, ExpressionError, Origin, Scope, FUNCTIONS};
 use crate::{Chart, Coordinate, DynSystem, Erased, System};
 
-/// The largest number of coordinates [`ExpressionSpec::into_dyn`] supports.
-pub const MAX_DYN_COORDINATES: usize = 16;
-
 /// The text of a system: coordinates, Lagrangian, definitions, parameters and exact solutions, as a
 /// spec file gives them.
 ///
@@ -187,18 +184,31 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
 impl ExpressionSpec {
     /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares
-    /// (at most [`MAX_DYN_COORDINATES`]).
+    /// (one of [`crate::SIZES`]: every count up to 16, then 20, 24, 32, 40, 50).
+    ///
+    /// ```
+    /// use ddirac::expression::{ExpressionError, ExpressionSpec};
+    /// use ddirac::Coordinate;
+    /// let chain = |n: usize| ExpressionSpec {
+    ///     coordinates: (0..n).map(|i| Coordinate::shape(&format!("x{i}"))).collect(),
+    ///     lagrangian: (0..n).map(|i| format!("0.5*x{i}_dot^2")).collect::<Vec<_>>().join(" + "),
+    ///     ..ExpressionSpec::default()
+    /// };
+    /// assert_eq!(chain(24).into_dyn().unwrap().coordinates().len(), 24);
+    /// let error = chain(17).into_dyn().err().unwrap();
+    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 17 }));
+    /// ```
     pub fn into_dyn(self) -> Result<Box<dyn DynSystem>, ExpressionError> {
         let compiled = compile(&self)?;
         macro_rules! dispatch {
             ($($n:literal)*) => {
                 match compiled.coordinates.len() {
                     $($n => Ok(Box::new(Erased::<_, $n>(ExpressionSystem::<$n>::from_compiled(compiled)?))),)*
-                    found => Err(ExpressionError::TooManyCoordinates { found, limit: MAX_DYN_COORDINATES }),
+                    found => Err(ExpressionError::UnsupportedSize { found }),
                 }
             };
         }
-        dispatch!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+        crate::sizes::with_sizes!(dispatch)
     }
 }
 

@@ -88,6 +88,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary). With an atlas,
     /// the run starts in the best chart at the initial point.
     pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        crate::stack::enough::<N, _>(|| Self::new_here(system, problem, method))
+    }
+
+    fn new_here(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
         let main = ChartStepper::new(InChart::new(system.clone(), 0), problem, method)?;
         let extra = system.charts().len();
         let near = main.progress.config.unwrapped();
@@ -171,6 +175,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// retries the step bit for bit); an energy jump is reported once the step that shows it is taken.
     #[inline]
     pub fn step(&mut self) -> Result<StepReport, Error> {
+        crate::stack::enough::<N, _>(|| self.step_here())
+    }
+
+    fn step_here(&mut self) -> Result<StepReport, Error> {
         if !self.switching {
             return self.chart_mut().step();
         }
@@ -324,6 +332,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// and the chart the step is in (the discrete energy of step k is known once it is taken:
     /// [`StepReport::discrete_energy`]). The summary's energy statistics are over the rows taken.
     pub fn row(&mut self) -> OwnedRow<N> {
+        crate::stack::enough::<N, _>(|| self.row_here())
+    }
+
+    fn row_here(&mut self) -> OwnedRow<N> {
         let current = self.current;
         let mut row = self.chart_mut().row();
         if current == 0 {
@@ -347,6 +359,15 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// [`crate::WATCH_STEPS`] steps (from k = 0). After an error the stepper stays at the step that
     /// failed, as after [`Stepper::step`].
     pub fn run_to_end(
+        &mut self,
+        every: usize,
+        observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
+        watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
+    ) -> Result<(), Error> {
+        crate::stack::enough::<N, _>(|| self.run_to_end_here(every, observer, watch))
+    }
+
+    fn run_to_end_here(
         &mut self,
         every: usize,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
@@ -405,6 +426,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
     /// are not tested again for a cold state.
     pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
+        crate::stack::enough::<N, _>(|| self.restart_here(state))
+    }
+
+    fn restart_here(&mut self, state: &State<N>) -> Result<(), Error> {
         let Some(memory) = &state.memory else {
             self.charts[0].as_mut().expect("the main chart has a stepper").restart(state)?;
             (self.current, self.near) = (0, state.q);
@@ -438,6 +463,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// and the check of the method's hypotheses near its initial data are tested anew). The main
     /// chart's derivatives are what is kept; the other charts are prepared anew when entered.
     pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
+        crate::stack::enough::<N, _>(|| self.renew_here(problem))
+    }
+
+    fn renew_here(&mut self, problem: &Problem) -> Result<bool, Error> {
         let main = self.charts[0].as_mut().expect("the main chart has a stepper");
         if !main.renew(problem)? {
             return Ok(false);
@@ -462,6 +491,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
     /// restarted.
     pub fn summary(&mut self) -> Result<Summary, Error> {
+        crate::stack::enough::<N, _>(|| self.summary_here())
+    }
+
+    fn summary_here(&mut self) -> Result<Summary, Error> {
         let mut summary = self.chart_mut().summary()?;
         summary.chart_switches = self.switches;
         if self.current != 0 {

@@ -133,7 +133,8 @@ impl<const N: usize> System<N> for PendulumChain<N> {
 /// Links of the default built-in `pendulum_chain`.
 const DEFAULT_LINKS: usize = 4;
 
-/// Instantiates the chain for each supported number of links: [`CHAIN_LINKS`] and the dispatch on it.
+/// Instantiates the chain for each supported number of links, the sizes of [`crate::SIZES`]:
+/// [`CHAIN_LINKS`] and the dispatch on it.
 macro_rules! supported_links {
     ($($n:literal)*) => {
         /// The numbers of links the built-in `pendulum_chain` can be built with (each is a separate
@@ -157,7 +158,7 @@ macro_rules! supported_links {
     };
 }
 
-supported_links!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 24 32 40 50);
+crate::sizes::with_sizes!(supported_links);
 
 fn unsupported_links(value: f64) -> Error {
     let supported: Vec<String> = CHAIN_LINKS.iter().map(|n| n.to_string()).collect();

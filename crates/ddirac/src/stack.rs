@@ -1,0 +1,26 @@
+//! The stack a step needs.
+//!
+//! The engine keeps every dual number, vector and matrix of a step on the stack (its dimensions are
+//! const generics), so what a step needs grows with n²: about 3 MiB for 50 coordinates, more than
+//! the 2 MiB of a thread that Rust spawns (rayon's workers, a test's thread). The stepper's entry
+//! points run through [`enough`], which continues on a stack taken from the heap when the thread has
+//! less than that left, and costs nothing for systems of up to [`ON_ANY_THREAD`] coordinates.
+
+/// Systems of up to this many coordinates run on the stack of any thread (tested with 2 MiB).
+pub const ON_ANY_THREAD: usize = 16;
+
+/// The stack kept free for an operation of a system of `n` coordinates: 256 KiB + 2 KiB · n²
+/// (5.3 MiB for 50, where a step measured between 2 and 4 MiB).
+pub const fn needed(n: usize) -> usize {
+    (256 << 10) + n * n * (2 << 10)
+}
+
+/// Runs `f`, on a new stack of twice [`needed`]`(N)` when less than that is left on this thread's.
+#[inline(always)]
+pub(crate) fn enough<const N: usize, R>(f: impl FnOnce() -> R) -> R {
+    if N <= ON_ANY_THREAD {
+        f()
+    } else {
+        stacker::maybe_grow(needed(N), 2 * needed(N), f)
+    }
+}
