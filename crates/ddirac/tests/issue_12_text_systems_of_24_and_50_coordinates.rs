@@ -115,4 +115,3 @@ fn sizes_the_erased_layer_is_not_built_for_are_refused_by_name() {
         assert_eq!(chain_spec(size).into_dyn().unwrap().coordinates().len(), size);
     }
 }
-

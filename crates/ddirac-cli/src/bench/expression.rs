@@ -1,27 +1,46 @@
 //! `expression`: the double spherical pendulum (paper §7.2) with its Lagrangian written as text
 //! (`ddirac::expression::ExpressionSystem`, the spec shared with the library's expression tests and
 //! benchmark) against the same Lagrangian in Rust (`systems::DoubleSphericalPendulum`): whole runs,
-//! reduced (+), midpoint rule, h = 0.01.
+//! reduced (+), midpoint rule, h = 0.01; and the chain of 50 pendula written as text against the
+//! built-in `PendulumChain<50>`, both type-erased as a spec runs them, compiled derivatives, time per
+//! step after set-up (each batch restarts one prepared stepper from its first state).
+
+use std::hint::black_box;
 
 use ddirac::expression::ExpressionSystem;
-use ddirac::systems::DoubleSphericalPendulum;
-use ddirac::{Problem, Rule, Variant};
+use ddirac::systems::{DoubleSphericalPendulum, PendulumChain};
+use ddirac::{Differentiation, DynSystem, Method, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
-use super::harness::{compare, Comparison, Pair, Target};
+use super::harness::{compare, Comparison, Contender, Pair, Target};
 use super::{engine, integrate_once, max_difference, method, print, to_json, Settings};
 
+#[path = "../../../ddirac/tests/common/chain_text.rs"]
+mod chain_text;
 #[path = "../../../ddirac/tests/common/pendulum_text.rs"]
 mod pendulum_text;
 
 /// A text Lagrangian should cost at most this many Rust ones.
 const TARGET: Target = Target::AtMost(1.5);
+/// A step of the text chain of 50 should cost at most this many of the built-in chain's (issue 12).
+const CHAIN_TARGET: Target = Target::AtMost(1.2);
+/// Links of the chain compared.
+const LINKS: usize = 50;
 
 #[derive(Serialize)]
 struct Report {
     comparison: Comparison,
     /// max_i |q_N,i| difference between the two runs.
+    final_q_difference: f64,
+    /// The chain of 50 pendula, per step.
+    chain: ChainReport,
+}
+
+#[derive(Serialize)]
+struct ChainReport {
+    comparison: Comparison,
+    /// max_i |q_N,i| difference between the two steppers after one batch.
     final_q_difference: f64,
 }
 
@@ -48,5 +67,56 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     print::comparison(&comparison);
     let difference = max_difference(&finals[..1], &finals[1..]);
     println!("    text and Rust, max |q_N difference|: {difference:.2e}");
-    to_json(&Report { comparison, final_q_difference: difference })
+    let chain = chain(settings)?;
+    to_json(&Report { comparison, final_q_difference: difference, chain })
+}
+
+/// A contender taking `steps` steps of a prepared stepper from its first state, and the q it ends at.
+fn stepping<'a>(
+    name: &str,
+    system: &'a dyn DynSystem,
+    problem: &Problem,
+    method: &Method,
+) -> Result<(Contender<'a>, Vec<f64>), miette::Report> {
+    let failed = |e: ddirac::Error| miette::miette!("the chain of {LINKS} ({name}) failed: {e}");
+    let mut stepper = system.stepper(problem, method).map_err(failed)?;
+    let first = stepper.state();
+    let steps = problem.steps;
+    let mut batch = move || -> Result<Vec<f64>, ddirac::Error> {
+        stepper.restart(&first)?;
+        for _ in 0..steps {
+            black_box(stepper.step()?);
+        }
+        Ok(stepper.state().q().to_vec())
+    };
+    let end = batch().map_err(failed)?;
+    let name_owned = name.to_owned();
+    let run = move || {
+        batch().map_err(|e| miette::miette!("the chain of {LINKS} ({name_owned}) failed: {e}"))?;
+        Ok(())
+    };
+    Ok((Contender::new(name, steps, run), end))
+}
+
+/// The chain of 50 pendula as text against the built-in one, per step.
+fn chain(settings: &Settings) -> Result<ChainReport, miette::Report> {
+    let steps = if settings.quick { 20 } else { 200 };
+    let text = chain_text::chain_spec(LINKS)
+        .into_dyn()
+        .map_err(|e| miette::miette!("the chain of {LINKS} written as text does not compile: {e}"))?;
+    let built_in: Box<dyn DynSystem> = Box::new(ddirac::Erased(PendulumChain::<LINKS>::default()));
+    let problem = PendulumChain::<LINKS>::problem(steps, 0.005);
+    let compiled =
+        Method { differentiation: Differentiation::Compiled, ..method(Rule::Midpoint, false, Variant::Plus) };
+    let (text_contender, text_end) = stepping("text", text.as_ref(), &problem, &compiled)?;
+    let (rust_contender, rust_end) = stepping("Rust", built_in.as_ref(), &problem, &compiled)?;
+    let title = format!(
+        "chain of {LINKS} pendula, midpoint, unreduced, compiled, h = 0.005, {steps} steps per batch after set-up"
+    );
+    let pairs = [Pair::new("text", "Rust").target(CHAIN_TARGET)];
+    let comparison = compare(title, settings.schedule, vec![rust_contender, text_contender], &pairs)?;
+    print::comparison(&comparison);
+    let difference = max_difference(&[rust_end], &[text_end]);
+    println!("    text and Rust, max |q_N difference|: {difference:.2e}");
+    Ok(ChainReport { comparison, final_q_difference: difference })
 }

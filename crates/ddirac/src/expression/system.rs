@@ -10,6 +10,7 @@
 
 use super::compile::closest;
 use super::{CompiledExpression, ExpressionError, Origin, Scope, FUNCTIONS};
+use crate::sizes::RuntimeSized;
 use crate::{Chart, Coordinate, DynSystem, Erased, System};
 
 /// The text of a system: coordinates, Lagrangian, definitions, parameters and exact solutions, as a
@@ -203,7 +204,7 @@ impl ExpressionSpec {
         macro_rules! dispatch {
             ($($n:literal)*) => {
                 match compiled.coordinates.len() {
-                    $($n => Ok(Box::new(Erased::<_, $n>(ExpressionSystem::<$n>::from_compiled(compiled)?))),)*
+                    $($n => Ok(Box::new(Erased::<_, $n>(RuntimeSized::Text(ExpressionSystem::<$n>::from_compiled(compiled)?)))),)*
                     found => Err(ExpressionError::UnsupportedSize { found }),
                 }
             };

@@ -69,14 +69,19 @@ pub struct BuiltIn {
     pub build: Builder,
 }
 
-fn build<S, const N: usize>(mut system: S, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>
+fn build<S, const N: usize>(system: S, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error>
 where
     S: crate::System<N> + Parameters + Send + Sync + 'static,
 {
+    Ok(Box::new(Erased(with_overrides(system, overrides)?)))
+}
+
+/// `system` with the parameter values `overrides`, in order.
+fn with_overrides<S: Parameters>(mut system: S, overrides: &[(String, f64)]) -> Result<S, Error> {
     for (name, value) in overrides {
         system.set_parameter(name, *value)?;
     }
-    Ok(Box::new(Erased(system)))
+    Ok(system)
 }
 
 /// The built-in systems.

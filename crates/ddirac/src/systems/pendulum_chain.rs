@@ -29,7 +29,8 @@
 
 use num_dual::DualNum;
 
-use crate::{Coordinate, DynSystem, Error, InitialMomentum, Input, Problem, System};
+use crate::sizes::RuntimeSized;
+use crate::{Coordinate, DynSystem, Erased, Error, InitialMomentum, Input, Problem, System};
 
 /// A planar chain of `N` identical pendula (uniform mass and length) hanging from a fixed pivot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -151,7 +152,10 @@ macro_rules! supported_links {
 
         fn build_links(links: usize, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error> {
             match links {
-                $($n => super::build(PendulumChain::<$n>::default(), overrides),)*
+                $($n => {
+                    let chain = super::with_overrides(PendulumChain::<$n>::default(), overrides)?;
+                    Ok(Box::new(Erased(RuntimeSized::Chain(chain))))
+                })*
                 _ => Err(unsupported_links(links as f64)),
             }
         }
