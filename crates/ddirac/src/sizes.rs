@@ -60,6 +60,8 @@ pub fn sizes_text() -> String {
 
 /// The systems whose number of coordinates is chosen at run time, as one type: the engine is
 /// instantiated once per size for all of them. Every method is the inner system's.
+// One value per erased system (and per chart stepper of it): the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub(crate) enum RuntimeSized<const N: usize> {
     /// A text system.
