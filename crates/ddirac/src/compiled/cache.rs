@@ -13,8 +13,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use super::executable::Executable;
-use super::hasher::FxHashMap;
 use super::{CompileError, Program};
+use rustc_hash::FxHashMap;
 
 /// How many distinct programs keep their native code.
 pub const CAPACITY: usize = 32;

@@ -23,8 +23,8 @@
 //! Each node also carries its value at the point the graph was built at (the inputs' values), so that
 //! a trace can answer what a value is where that is harmless.
 
-use super::hasher::FxHashMap;
 use super::program::{Binary, Instruction, Program, Unary};
+use rustc_hash::FxHashMap;
 
 /// The index of a node, which is also its register in an extracted program.
 pub(crate) type Node = u32;

@@ -34,8 +34,8 @@ use std::sync::{Mutex, PoisonError};
 use super::derivative::{directional, pair_graph, PairGraph};
 use super::executable::Executable;
 use super::graph::{Graph, Node};
-use super::hasher::FxHashMap;
 use super::{CompileError, Instruction, Program, Traced};
+use rustc_hash::FxHashMap;
 
 /// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
 /// constant (see [`constant_in`]); the residual test of every step guards the rest.

@@ -8,7 +8,6 @@ mod cost;
 mod derivative;
 mod executable;
 pub(crate) mod graph;
-mod hasher;
 mod interpreter;
 #[cfg(feature = "jit")]
 pub mod jit;
