@@ -1,4 +1,5 @@
-"""Text systems of 24 and 50 coordinates against the built-in chain of pendula, from Python."""
+"""Text systems of 17 to 50 coordinates from Python: against the built-in chain of pendula, against exact
+solutions between the engine's sizes, and the refusal above 50."""
 
 import math
 import threading
@@ -50,6 +51,21 @@ def test_a_chain_of_fifty_runs_on_a_small_thread():
     assert result["run"].q.shape == (6, 50)
 
 
-def test_a_size_the_engine_is_not_built_for_is_refused_with_the_sizes_it_is():
-    with pytest.raises(ddirac.Error, match="17 coordinates; text systems are built for 1–16, 20, 24, 32, 40, 50"):
-        text_chain(17)
+def test_seventeen_oscillators_follow_the_midpoint_rules_exact_rotation():
+    # 17 coordinates run in the engine of 20 with hidden padding; each oscillator turns by
+    # 2 atan(ωh/2) per step, exactly, under the midpoint rule.
+    n, h, steps = 17, 0.02, 500
+    omegas = [1.0 + i / n for i in range(n)]
+    lagrangian = " + ".join(f"0.5*(x{i}_dot^2 - {w * w}*x{i}^2)" for i, w in enumerate(omegas))
+    system = ddirac.System(lagrangian=lagrangian, shape=[f"x{i}" for i in range(n)])
+    assert len(system.coordinates) == n
+    run = ddirac.simulate(system, q0=[1.0] * n, p0=[0.0] * n, step=h, steps=steps, rule="midpoint")
+    assert run.q.shape == (steps + 1, n) and run.p.shape == (steps + 1, n)
+    k = np.arange(steps + 1)[:, None]
+    exact = np.cos(2.0 * k * np.arctan(np.array(omegas) * h / 2.0))
+    np.testing.assert_allclose(run.q, exact, rtol=0, atol=1e-11)
+
+
+def test_more_than_fifty_coordinates_are_refused_with_the_largest_size():
+    with pytest.raises(ddirac.Error, match="51 coordinates; text systems have at most 50"):
+        text_chain(51)

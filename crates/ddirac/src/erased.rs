@@ -277,6 +277,14 @@ impl DynState {
         &self.p
     }
 
+    /// This state with `q` and `p` cut or extended by zeros to `n` entries, keeping the stepper's
+    /// memory (for a system run with padding coordinates, [`crate::padding`]).
+    pub(crate) fn resized(mut self, n: usize) -> Self {
+        self.q.resize(n, 0.0);
+        self.p.resize(n, 0.0);
+        self
+    }
+
     /// Whether the state holds a stepper's memory.
     pub fn is_warm(&self) -> bool {
         self.typed.is_some()

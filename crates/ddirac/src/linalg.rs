@@ -88,6 +88,14 @@ impl<const N: usize> Factorization<N> {
         Some(Self { lu, row_of, col_of, rank })
     }
 
+    /// The largest entry of the factorized matrix, |a| at the first pivot of full pivoting.
+    pub(crate) fn scale(&self) -> f64 {
+        if N == 0 {
+            return 0.0;
+        }
+        self.lu[0][0].abs()
+    }
+
     /// How near to singular the factorized matrix is: its smallest pivot over its largest (0 when the
     /// rank is below N), and the column of `a` whose pivot that is. Full pivoting orders the pivots by
     /// size, so the ratio estimates the reciprocal condition number within a factor of a few.

@@ -24,8 +24,10 @@ use crate::linalg::Factorization;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
-    /// Convergence threshold. The iteration stops when `‖r‖∞ ≤ tolerance · residual_scale` or when
-    /// the last correction satisfies `‖δz‖∞ ≤ tolerance · (1 + ‖z‖∞)`.
+    /// Convergence threshold. The iteration stops when `‖r‖∞ ≤ tolerance · max(residual_scale, 1)`
+    /// (the floor 1 lowered to ‖J‖ (1 + ‖z‖∞) for a system whose Jacobian is that small, see
+    /// [`NewtonOptions::threshold_at`]) or when the last correction satisfies
+    /// `‖δz‖∞ ≤ tolerance · (1 + ‖z‖∞)`.
     pub tolerance: f64,
     /// Largest number of Newton corrections before the step is declared failed.
     pub max_iterations: usize,
@@ -38,6 +40,22 @@ impl NewtonOptions {
     /// The residual test's threshold `tolerance · max(residual_scale, 1)`.
     pub fn threshold(&self, residual_scale: f64) -> f64 {
         self.tolerance * residual_scale.max(1.0)
+    }
+
+    /// The residual test's threshold where the Jacobian's largest entry ‖J‖ is known, at the
+    /// iterate z: `tolerance · max(residual_scale, min(1, ‖J‖ (1 + ‖z‖∞)))`. The floor 1 of
+    /// [`NewtonOptions::threshold`] is an absolute size of the residual (a momentum); for a system
+    /// of tiny scale (an electron's mass in SI units gives ‖J‖ ≈ 10⁻²⁸) every residual is below it,
+    /// so the floor follows the residual that a correction of relative size 1 would remove.
+    ///
+    /// ```
+    /// let options = ddirac::NewtonOptions::default();
+    /// assert_eq!(options.threshold_at(0.0, Some(50.0), 1.0), options.threshold(0.0));
+    /// assert_eq!(options.threshold_at(0.0, Some(5e-29), 1.0), 1e-12 * 1e-28);
+    /// ```
+    pub fn threshold_at(&self, residual_scale: f64, jacobian_scale: Option<f64>, z_scale: f64) -> f64 {
+        let floor = jacobian_scale.map_or(1.0, |j| (j * (1.0 + z_scale)).min(1.0));
+        self.tolerance * residual_scale.max(floor)
     }
 }
 
@@ -244,7 +262,6 @@ fn chord<const N: usize>(
     kept: &mut Option<Factorization<N>>,
     mut eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
 ) -> Result<NewtonStats, NewtonFailure> {
-    let threshold = options.threshold(residual_scale);
     let (mut iterations, mut jacobians) = (0, 0);
     let mut evaluate = |kept: &mut Option<Factorization<N>>, z: &SVector<f64, N>, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);
@@ -262,6 +279,7 @@ fn chord<const N: usize>(
     let mut fresh = kept.is_none();
     let (mut r, mut residual) = evaluate(kept, z, fresh, iterations)?;
     jacobians += usize::from(fresh);
+    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), z.amax());
     let mut small_correction = false;
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);

@@ -6,6 +6,9 @@
 //! the built-in chain of pendula take their sizes from this one list, [`SIZES`]: every count up to 16,
 //! then 20, 24, 32, 40 and 50; and both are erased as one system type, [`RuntimeSized`], so that each
 //! size is one copy of the engine, not one per system type.
+//!
+//! A text system whose count lies between two sizes runs in the next one up, with padding
+//! coordinates that it hides ([`crate::padding`]).
 
 use crate::expression::ExpressionSystem;
 use crate::systems::PendulumChain;
@@ -34,6 +37,11 @@ macro_rules! list {
 /// assert!(!ddirac::SIZES.contains(&17));
 /// ```
 pub const SIZES: &[usize] = with_sizes!(list);
+
+/// The smallest engine size of [`SIZES`] that holds `n` coordinates, if any.
+pub(crate) fn engine_size(n: usize) -> Option<usize> {
+    SIZES.iter().copied().find(|&m| m >= n.max(1))
+}
 
 /// The sizes as a reader would write them: `1–16, 20, 24, 32, 40, 50`.
 ///

@@ -1,8 +1,8 @@
 //! Text systems beyond 16 coordinates (issue 12): a chain of 24 and of 50 pendula written as text
 //! runs through the type-erased layer (what specs and Python use) and equals the built-in
 //! `pendulum_chain` of as many links — its Lagrangian and gradients at random points, and its
-//! trajectories with dual numbers and with compiled derivatives. Sizes outside `ddirac::SIZES` are
-//! refused with an error naming the supported ones.
+//! trajectories with dual numbers and with compiled derivatives. Counts between the engine's sizes are
+//! in `issue_12_text_systems_of_any_size_up_to_50.rs`.
 
 #[path = "common/chain_text.rs"]
 mod chain_text;
@@ -10,7 +10,7 @@ mod common;
 
 use chain_text::chain_spec;
 use common::{max_scaled_row_diff, sampler};
-use ddirac::expression::{ExpressionError, ExpressionSystem};
+use ddirac::expression::ExpressionSystem;
 use ddirac::systems::{find, PendulumChain};
 use ddirac::{Differentiation, DynSystem, Method, OutputOptions, Problem, Rule, System};
 
@@ -95,23 +95,5 @@ fn a_text_chain_of_50_has_the_built_in_lagrangian_and_motion() {
         let difference = same_motion(50, steps, differentiation);
         eprintln!("50 links, {differentiation:?}, {steps} steps: trajectories differ by {difference:.2e}");
         assert!(difference <= 1e-11, "{differentiation:?}: {difference:e}");
-    }
-}
-
-#[test]
-fn sizes_the_erased_layer_is_not_built_for_are_refused_by_name() {
-    for found in [17, 25, 49, 51, 64] {
-        assert!(!ddirac::SIZES.contains(&found));
-        let error = chain_spec(found).into_dyn().err().expect("refused");
-        assert!(matches!(error, ExpressionError::UnsupportedSize { found: f } if f == found), "{error:?}");
-        assert_eq!(
-            error.to_string(),
-            format!(
-                "the system has {found} coordinates; text systems are built for 1–16, 20, 24, 32, 40, 50 coordinates"
-            )
-        );
-    }
-    for &size in ddirac::SIZES {
-        assert_eq!(chain_spec(size).into_dyn().unwrap().coordinates().len(), size);
     }
 }

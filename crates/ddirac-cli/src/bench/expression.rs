@@ -3,7 +3,9 @@
 //! benchmark) against the same Lagrangian in Rust (`systems::DoubleSphericalPendulum`): whole runs,
 //! reduced (+), midpoint rule, h = 0.01; and the chain of 50 pendula written as text against the
 //! built-in `PendulumChain<50>`, both type-erased as a spec runs them, compiled derivatives, time per
-//! step after set-up (each batch restarts one prepared stepper from its first state).
+//! step after set-up (each batch restarts one prepared stepper from its first state); and what padding
+//! costs: the text chain of 17, run in the engine of 20 with padding coordinates
+//! (`ddirac::padding`), against the text chains of 16 and 20, per step.
 
 use std::hint::black_box;
 
@@ -35,6 +37,8 @@ struct Report {
     final_q_difference: f64,
     /// The chain of 50 pendula, per step.
     chain: ChainReport,
+    /// The padded chain of 17 against the chains of 16 and 20, per step.
+    padding: Comparison,
 }
 
 #[derive(Serialize)]
@@ -68,7 +72,8 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let difference = max_difference(&finals[..1], &finals[1..]);
     println!("    text and Rust, max |q_N difference|: {difference:.2e}");
     let chain = chain(settings)?;
-    to_json(&Report { comparison, final_q_difference: difference, chain })
+    let padding = padding(settings)?;
+    to_json(&Report { comparison, final_q_difference: difference, chain, padding })
 }
 
 /// A contender taking `steps` steps of a prepared stepper from its first state, and the q it ends at.
@@ -78,7 +83,7 @@ fn stepping<'a>(
     problem: &Problem,
     method: &Method,
 ) -> Result<(Contender<'a>, Vec<f64>), miette::Report> {
-    let failed = |e: ddirac::Error| miette::miette!("the chain of {LINKS} ({name}) failed: {e}");
+    let failed = |e: ddirac::Error| miette::miette!("the chain ({name}) failed: {e}");
     let mut stepper = system.stepper(problem, method).map_err(failed)?;
     let first = stepper.state();
     let steps = problem.steps;
@@ -92,7 +97,7 @@ fn stepping<'a>(
     let end = batch().map_err(failed)?;
     let name_owned = name.to_owned();
     let run = move || {
-        batch().map_err(|e| miette::miette!("the chain of {LINKS} ({name_owned}) failed: {e}"))?;
+        batch().map_err(|e| miette::miette!("the chain ({name_owned}) failed: {e}"))?;
         Ok(())
     };
     Ok((Contender::new(name, steps, run), end))
@@ -119,4 +124,33 @@ fn chain(settings: &Settings) -> Result<ChainReport, miette::Report> {
     let difference = max_difference(&[rust_end], &[text_end]);
     println!("    text and Rust, max |q_N difference|: {difference:.2e}");
     Ok(ChainReport { comparison, final_q_difference: difference })
+}
+
+/// The text chain of 17 links, padded to the engine of 20, against the text chains of 16 and 20,
+/// per step (compiled derivatives): what running between the engine's sizes costs.
+fn padding(settings: &Settings) -> Result<Comparison, miette::Report> {
+    let steps = if settings.quick { 20 } else { 400 };
+    let compiled =
+        Method { differentiation: Differentiation::Compiled, ..method(Rule::Midpoint, false, Variant::Plus) };
+    let chains = [16, 17, 20].map(|links| {
+        chain_text::chain_spec(links)
+            .into_dyn()
+            .map_err(|e| miette::miette!("the chain of {links} written as text does not compile: {e}"))
+    });
+    let [sixteen, seventeen, twenty] = chains;
+    let (sixteen, seventeen, twenty) = (sixteen?, seventeen?, twenty?);
+    let problem = |links: usize| {
+        let q0 = (1..=links).map(|i| 0.5 * (std::f64::consts::PI * i as f64 / (links + 1) as f64).sin()).collect();
+        Problem::new(0.005, steps, q0, ddirac::InitialMomentum::Momentum(vec![0.0; links]))
+    };
+    let contenders = vec![
+        stepping("16", sixteen.as_ref(), &problem(16), &compiled)?.0,
+        stepping("17 in 20", seventeen.as_ref(), &problem(17), &compiled)?.0,
+        stepping("20", twenty.as_ref(), &problem(20), &compiled)?.0,
+    ];
+    let title = format!("text chains of 16, 17 (padded to 20) and 20 pendula, compiled, {steps} steps per batch");
+    let pairs = [Pair::new("17 in 20", "16"), Pair::new("17 in 20", "20")];
+    let comparison = compare(title, settings.schedule, contenders, &pairs)?;
+    print::comparison(&comparison);
+    Ok(comparison)
 }

@@ -318,9 +318,26 @@ pub enum ExpressionError {
         /// Coordinates declared.
         found: usize,
     },
-    /// A number of coordinates the type-erased layer is not built for (see [`crate::SIZES`]).
-    #[error("the system has {found} coordinates; text systems are built for {} coordinates", crate::sizes_text())]
+    /// More coordinates than the largest engine (see [`crate::SIZES`]).
+    #[error(
+        "the system has {found} coordinates; text systems have at most {} (the engine is built for {} \
+         coordinates, and a count between these runs in the next one up)",
+        crate::SIZES[crate::SIZES.len() - 1],
+        crate::sizes_text()
+    )]
     UnsupportedSize {
+        /// Coordinates declared.
+        found: usize,
+    },
+    /// An engine size that is not one of [`crate::SIZES`], or smaller than the system
+    /// ([`super::ExpressionSpec::into_dyn_in`]).
+    #[error(
+        "no engine of {size} coordinates for a system of {found}: the engine is built for {} coordinates",
+        crate::sizes_text()
+    )]
+    EngineSize {
+        /// The size asked for.
+        size: usize,
         /// Coordinates declared.
         found: usize,
     },
@@ -347,7 +364,8 @@ impl ExpressionError {
             | ExpressionError::MissingQuality
             | ExpressionError::ChartDimension { .. }
             | ExpressionError::Dimension { .. }
-            | ExpressionError::UnsupportedSize { .. } => None,
+            | ExpressionError::UnsupportedSize { .. }
+            | ExpressionError::EngineSize { .. } => None,
         }
     }
 

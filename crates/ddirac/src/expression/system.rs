@@ -72,6 +72,10 @@ pub struct ExpressionSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExpressionSystem<const N: usize> {
     coordinates: [Coordinate; N],
+    /// The spec's coordinates, the first of the `N`; the others are padding ([`crate::padding`]).
+    own: usize,
+    /// The mass of the padding coordinates.
+    padding_mass: f64,
     lagrangian: CompiledExpression,
     open: OpenLagrangian,
     exact: Vec<Option<CompiledExpression>>,
@@ -108,10 +112,23 @@ impl<const N: usize> ExpressionSystem<N> {
 
     fn from_compiled(compiled: Compiled) -> Result<Self, ExpressionError> {
         let found = compiled.coordinates.len();
-        let coordinates =
-            compiled.coordinates.try_into().map_err(|_| ExpressionError::Dimension { expected: N, found })?;
-        let Compiled { lagrangian, open, exact, atlas, .. } = compiled;
-        Ok(Self { coordinates, lagrangian, open, exact, atlas })
+        if found != N {
+            return Err(ExpressionError::Dimension { expected: N, found });
+        }
+        Ok(Self::padded(compiled))
+    }
+
+    /// The compiled spec (at most `N` coordinates) followed by padding coordinates up to `N`
+    /// ([`crate::padding`]).
+    fn padded(compiled: Compiled) -> Self {
+        let Compiled { coordinates, lagrangian, open, exact, atlas } = compiled;
+        let own = coordinates.len();
+        let coordinates = crate::padding::coordinates(&coordinates);
+        let mut system = Self { coordinates, own, padding_mass: 0.0, lagrangian, open, exact, atlas };
+        if own < N {
+            system.padding_mass = crate::padding::mass(&system);
+        }
+        system
     }
 
     /// The compiled Lagrangian with the parameters folded in; its variables are q_0 … q_{N−1}, then
@@ -129,17 +146,23 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
     /// With the parameters folded in, or, in a trace that keeps them as runtime inputs, read from
     /// those.
     fn lagrangian<D: crate::Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
-        let parameters = &self.open.parameters;
+        let (parameters, n) = (&self.open.parameters, self.own);
         let runtime = |k: usize| D::runtime_input(crate::RuntimeInput::Parameter(k), parameters[k]);
-        if !parameters.is_empty() && runtime(0).is_some() {
+        let own = if !parameters.is_empty() && runtime(0).is_some() {
             let values: Vec<D> = (0..parameters.len()).map(|k| runtime(k).unwrap_or(D::from(parameters[k]))).collect();
-            return self.open.program.eval_with(|i| match i {
-                _ if i < N => q[i],
-                _ if i < 2 * N => v[i - N],
-                _ => values[i - 2 * N],
-            });
+            self.open.program.eval_with(|i| match i {
+                _ if i < n => q[i],
+                _ if i < 2 * n => v[i - n],
+                _ => values[i - 2 * n],
+            })
+        } else {
+            self.lagrangian.eval_with(|i| if i < n { q[i] } else { v[i - n] })
+        };
+        if n < N {
+            own + crate::padding::lagrangian(v, n, self.padding_mass)
+        } else {
+            own
         }
-        self.lagrangian.eval_with(|i| if i < N { q[i] } else { v[i - N] })
     }
 
     /// The given exact solutions at `t`; `q0` and `p0` are not used (see the module documentation).
@@ -147,37 +170,40 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
         if self.exact.iter().all(Option::is_none) {
             return None;
         }
-        Some(std::array::from_fn(|i| self.exact[i].as_ref().map(|program| program.eval(&[t]))))
+        Some(std::array::from_fn(|i| self.exact.get(i)?.as_ref().map(|program| program.eval(&[t]))))
     }
 
     fn charts(&self) -> Vec<Chart<N>> {
         let charts = self.atlas.iter().flat_map(|atlas| &atlas.charts);
         charts
-            .map(|c| Chart {
-                name: c.name.clone(),
-                coordinates: c.coordinates.clone().try_into().expect("checked: as many coordinates as the main chart"),
-            })
+            .map(|c| Chart { name: c.name.clone(), coordinates: crate::padding::coordinates(&c.coordinates) })
             .collect()
     }
 
     fn chart_to_main<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
         match &self.atlas {
-            Some(atlas) => std::array::from_fn(|i| atlas.charts[chart - 1].to_main[i].eval_with(|j| q[j])),
+            Some(atlas) => std::array::from_fn(|i| match atlas.charts[chart - 1].to_main.get(i) {
+                Some(map) => map.eval_with(|j| q[j]),
+                None => q[i],
+            }),
             None => *q,
         }
     }
 
     fn main_to_chart<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
         match &self.atlas {
-            Some(atlas) => std::array::from_fn(|i| atlas.charts[chart - 1].from_main[i].eval_with(|j| q[j])),
+            Some(atlas) => std::array::from_fn(|i| match atlas.charts[chart - 1].from_main.get(i) {
+                Some(map) => map.eval_with(|j| q[j]),
+                None => q[i],
+            }),
             None => *q,
         }
     }
 
     fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
         match &self.atlas {
-            Some(atlas) if chart == 0 => atlas.quality.eval(q),
-            Some(atlas) => atlas.charts[chart - 1].quality.eval(q),
+            Some(atlas) if chart == 0 => atlas.quality.eval(&q[..self.own]),
+            Some(atlas) => atlas.charts[chart - 1].quality.eval(&q[..self.own]),
             None => 1.0,
         }
     }
@@ -185,7 +211,8 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
 impl ExpressionSpec {
     /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares
-    /// (one of [`crate::SIZES`]: every count up to 16, then 20, 24, 32, 40, 50).
+    /// (at most the largest of [`crate::SIZES`], 50). A count that is not itself one of the sizes runs
+    /// in the engine of the next size up with padding coordinates that it hides ([`crate::padding`]).
     ///
     /// ```
     /// use ddirac::expression::{ExpressionError, ExpressionSpec};
@@ -196,20 +223,49 @@ impl ExpressionSpec {
     ///     ..ExpressionSpec::default()
     /// };
     /// assert_eq!(chain(24).into_dyn().unwrap().coordinates().len(), 24);
-    /// let error = chain(17).into_dyn().err().unwrap();
-    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 17 }));
+    /// assert_eq!(chain(17).into_dyn().unwrap().coordinates().len(), 17);
+    /// let error = chain(51).into_dyn().err().unwrap();
+    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 51 }));
     /// ```
     pub fn into_dyn(self) -> Result<Box<dyn DynSystem>, ExpressionError> {
+        let found = self.coordinates.len();
+        let size = crate::sizes::engine_size(found).ok_or(ExpressionError::UnsupportedSize { found })?;
+        self.into_dyn_in(size)
+    }
+
+    /// [`ExpressionSpec::into_dyn`] in the engine of `size` coordinates, one of [`crate::SIZES`] and
+    /// at least the spec's count; the coordinates beyond the spec's are padding
+    /// ([`crate::padding`]). For comparing a padded run with an unpadded one, and for measuring what
+    /// the padding costs.
+    ///
+    /// ```
+    /// use ddirac::expression::{ExpressionError, ExpressionSpec};
+    /// use ddirac::Coordinate;
+    /// let spec = ExpressionSpec {
+    ///     coordinates: vec![Coordinate::shape("x")],
+    ///     lagrangian: "0.5*x_dot^2 - 0.5*x^2".into(),
+    ///     ..ExpressionSpec::default()
+    /// };
+    /// assert_eq!(spec.clone().into_dyn_in(4).unwrap().coordinates().len(), 1);
+    /// assert!(matches!(spec.into_dyn_in(17), Err(ExpressionError::EngineSize { size: 17, found: 1 })));
+    /// ```
+    pub fn into_dyn_in(self, size: usize) -> Result<Box<dyn DynSystem>, ExpressionError> {
         let compiled = compile(&self)?;
+        let own = compiled.coordinates.clone();
+        if own.len() > size {
+            return Err(ExpressionError::EngineSize { size, found: own.len() });
+        }
         macro_rules! dispatch {
             ($($n:literal)*) => {
-                match compiled.coordinates.len() {
-                    $($n => Ok(Box::new(Erased::<_, $n>(RuntimeSized::Text(ExpressionSystem::<$n>::from_compiled(compiled)?)))),)*
-                    found => Err(ExpressionError::UnsupportedSize { found }),
+                match size {
+                    $($n => Box::new(Erased::<_, $n>(RuntimeSized::Text(ExpressionSystem::<$n>::padded(compiled))))
+                        as Box<dyn DynSystem>,)*
+                    _ => return Err(ExpressionError::EngineSize { size, found: own.len() }),
                 }
             };
         }
-        crate::sizes::with_sizes!(dispatch)
+        let inner = crate::sizes::with_sizes!(dispatch);
+        Ok(if own.len() == size { inner } else { Box::new(crate::padding::Padded { inner, own, size }) })
     }
 }
 

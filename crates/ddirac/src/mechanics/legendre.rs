@@ -78,7 +78,7 @@ pub fn conditioning<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &
     Factorization::new(hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
 }
 
-fn velocity_hessian<S: System<N>, const N: usize>(
+pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
     system: &S,
     q: &[f64; N],
     v: &[f64; N],
