@@ -39,7 +39,7 @@ pub mod interrupt;
 mod linalg;
 pub mod mechanics;
 pub mod newton;
-mod padding;
+pub mod padding;
 pub mod periodicity;
 pub mod prelude;
 mod problem;

@@ -15,7 +15,7 @@
 //! linear in v, of ∂²L/∂q∂v) at a reference point, so that it is of the system's own scale, not of
 //! an arbitrary unit (a system in SI units with an electron's mass has entries of 10⁻³⁰).
 //!
-//! [`Padded`] hides the padding: the problem, the connection and cold states are extended by zeros
+//! `Padded` hides the padding: the problem, the connection and cold states are extended by zeros
 //! (after their sizes are checked against n, so errors name the system's own sizes), and rows,
 //! states, summaries and the check's report are cut back to n.
 
@@ -24,8 +24,8 @@ use crate::diagnostics::{Row, Summary};
 use crate::integrator::OutputError;
 use crate::mechanics::legendre;
 use crate::{
-    CheckReport, Connection, Coordinate, DynRow, DynState, DynStepper, DynSystem, Error, InitialMomentum, Input, Method,
-    OutputOptions, Problem, Role, Scalar, StepReport, System,
+    CheckReport, Connection, Coordinate, DynRow, DynState, DynStepper, DynSystem, Error, InitialMomentum, Input,
+    Method, OutputOptions, Problem, Role, Scalar, StepReport, System,
 };
 
 /// The padding coordinates `used .. N` after the system's own: shape coordinates on ℝ, named so

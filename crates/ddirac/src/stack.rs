@@ -3,7 +3,7 @@
 //! The engine keeps every dual number, vector and matrix of a step on the stack (its dimensions are
 //! const generics), so what a step needs grows with n²: about 3 MiB for 50 coordinates, more than
 //! the 2 MiB of a thread that Rust spawns (rayon's workers, a test's thread). The stepper's entry
-//! points run through [`enough`], which continues on a stack taken from the heap when the thread has
+//! points run through `enough`, which continues on a stack taken from the heap when the thread has
 //! less than that left, and costs nothing for systems of up to [`ON_ANY_THREAD`] coordinates.
 
 /// Systems of up to this many coordinates run on the stack of any thread (tested with 2 MiB).

@@ -21,8 +21,8 @@ mod pendulum_text;
 use chain_text::chain_spec;
 use ddirac::expression::{ChartSpec, ExpressionError, ExpressionSpec};
 use ddirac::{
-    Connection, Coordinate, Differentiation, DynState, DynSystem, Error, InitialMomentum, Input, Method,
-    NewtonOptions, OutputOptions, Problem, Rule, Summary,
+    Connection, Coordinate, Differentiation, DynState, DynSystem, Error, InitialMomentum, Input, Method, NewtonOptions,
+    OutputOptions, Problem, Rule, Summary,
 };
 
 /// Every row of a run (k, t, q, p, energy, discrete energy, momentum map, chart) as bits, and the
@@ -95,7 +95,8 @@ fn a_chain_of_16_padded_to_20_runs_bit_for_bit_as_without_padding() {
     let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / 17.0).sin();
     let problem = Problem::new(0.005, 200, (1..=16).map(arch).collect(), InitialMomentum::Momentum(vec![0.0; 16]));
     for differentiation in [Differentiation::Dual, Differentiation::Compiled] {
-        let summary = padding_is_invisible(&chain_spec(16), 20, &problem, &method(Rule::Midpoint, false, differentiation));
+        let summary =
+            padding_is_invisible(&chain_spec(16), 20, &problem, &method(Rule::Midpoint, false, differentiation));
         assert!(summary.final_q[0] != problem.q0[0], "the chain should move");
     }
 }
@@ -103,12 +104,8 @@ fn a_chain_of_16_padded_to_20_runs_bit_for_bit_as_without_padding() {
 #[test]
 fn the_double_spherical_pendulum_padded_to_8_reduces_as_without_padding() {
     let spec = pendulum_text::double_spherical_pendulum_spec();
-    let problem = Problem::new(
-        0.05,
-        300,
-        vec![0.1, 1.0, 0.2, 1.3],
-        InitialMomentum::Velocity(vec![0.05, 0.0, 0.03, 0.0]),
-    );
+    let problem =
+        Problem::new(0.05, 300, vec![0.1, 1.0, 0.2, 1.3], InitialMomentum::Velocity(vec![0.05, 0.0, 0.03, 0.0]));
     let connection = Connection::new(&[vec![0.0, -0.5, 0.0]]).unwrap();
     for differentiation in [Differentiation::Dual, Differentiation::Compiled] {
         for connection in [None, Some(connection.clone())] {
@@ -158,7 +155,12 @@ fn the_spherical_pendulum_padded_to_4_switches_charts_bit_for_bit_as_without_pad
     // run moves to the lower cap and back.
     let problem = Problem::new(0.005, 2000, vec![1.0, 0.0], InitialMomentum::Velocity(vec![0.0, 0.05]));
     for reduced in [false, true] {
-        let summary = padding_is_invisible(&spherical_pendulum(), 4, &problem, &method(Rule::Midpoint, reduced, Differentiation::Auto));
+        let summary = padding_is_invisible(
+            &spherical_pendulum(),
+            4,
+            &problem,
+            &method(Rule::Midpoint, reduced, Differentiation::Auto),
+        );
         assert!(summary.chart_switches >= 2, "the run should switch charts: {}", summary.chart_switches);
     }
 }
@@ -169,7 +171,10 @@ fn oscillators(n: usize, m: f64) -> ExpressionSpec {
     let omega = |i: usize| 1.0 + i as f64 / n as f64;
     ExpressionSpec {
         coordinates: (0..n).map(|i| Coordinate::shape(&format!("x{i}"))).collect(),
-        lagrangian: (0..n).map(|i| format!("0.5*m*(x{i}_dot^2 - {}*x{i}^2)", omega(i).powi(2))).collect::<Vec<_>>().join(" + "),
+        lagrangian: (0..n)
+            .map(|i| format!("0.5*m*(x{i}_dot^2 - {}*x{i}^2)", omega(i).powi(2)))
+            .collect::<Vec<_>>()
+            .join(" + "),
         parameters: vec![("m".into(), m)],
         exact_solution: (0..n).map(|i| (format!("x{i}"), format!("cos({}*t)", omega(i)))).collect(),
         ..ExpressionSpec::default()
@@ -301,7 +306,10 @@ fn more_than_50_coordinates_are_refused_with_the_largest_size() {
     for found in [51, 64, 100] {
         let error = chain_spec(found).into_dyn().err().expect("refused");
         assert!(matches!(error, ExpressionError::UnsupportedSize { found: f } if f == found), "{error:?}");
-        assert!(error.to_string().starts_with(&format!("the system has {found} coordinates; text systems have at most 50")), "{error}");
+        assert!(
+            error.to_string().starts_with(&format!("the system has {found} coordinates; text systems have at most 50")),
+            "{error}"
+        );
     }
     let error = chain_spec(3).into_dyn_in(2).err().expect("refused");
     assert!(matches!(error, ExpressionError::EngineSize { size: 2, found: 3 }), "{error:?}");

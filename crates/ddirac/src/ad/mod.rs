@@ -8,7 +8,7 @@
 //! - for a residual alone, the value, ∂f/∂a and ∂f/∂b ([`Gradient`]), a small fraction of the cost.
 //!
 //! Both are dual numbers over plain fixed-size arrays, so their arithmetic compiles to straight-line
-//! code without branches or copies of optional parts. They implement num-dual's [`DualNum`], so a
+//! code without branches or copies of optional parts. They implement num-dual's [`DualNum`](num_dual::DualNum), so a
 //! user's Lagrangian, generic over `D: DualNum<Primitive = f64> + Copy`, runs on them unchanged.
 //!
 //! For many coordinates a single [`Mixed`] pass carries n² second-derivative entries per

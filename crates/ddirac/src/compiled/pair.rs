@@ -95,7 +95,8 @@ impl<const N: usize> CompiledPair<N> {
     /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`] or
     /// [`super::pair_programs_with_runtime_inputs`], whose runtime inputs take the values the trace
     /// recorded), or shares the native code of an earlier run with the same programs
-    /// ([`super::native`]); programs with other numbers of inputs or outputs are an error.
+    /// ([`super::native_compilations`] counts the compilations); programs with other numbers of
+    /// inputs or outputs are an error.
     pub fn from_programs(programs: &PairPrograms) -> Result<Self, CompileError> {
         let PairPrograms { first, mixed, guards, runtime, .. } = programs;
         let shape = |p: &Program| (p.inputs, p.outputs.len());

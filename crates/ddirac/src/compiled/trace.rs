@@ -9,7 +9,7 @@
 //! A recording is valid for every input only if the code does the same operations everywhere. Code
 //! that compares numbers (`<`, `==`, `partial_cmp`, `is_positive`, … — what `min`, `max` and
 //! piecewise functions do) may branch on the answer. A comparison of input-dependent numbers is
-//! answered for the trace point and *guarded*: the recording keeps sign(x − y) as a [`Guard`] with
+//! answered for the trace point and *guarded*: the recording keeps sign(x − y) as a `Guard` with
 //! the signs that give the same answer, and a program evaluated where a guard's sign is another one
 //! is not valid there (the caller then uses dual numbers for that point). Within its guards a
 //! program is the branch the trace took, with that branch's (one-sided) derivatives. The choices of
