@@ -9,12 +9,12 @@ use std::hint::black_box;
 use ddirac::baselines::boris::Boris;
 use ddirac::baselines::charged_particle_step::{ChargedParticleStep, ReducedState};
 use ddirac::systems::ChargedParticle;
-use ddirac::{Differentiation, Method, Problem, Rule, Variant};
+use ddirac::{Differentiation, DynSystem, Method, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
 use super::harness::{compare, Comparison, Contender, Pair, Target};
-use super::{engine, integrate_once, max_difference, method, print, to_json, Settings};
+use super::{built_in, engine, integrate_once, max_difference, method, print, to_json, Settings};
 
 /// The generic engine.
 pub const ENGINE: &str = "engine";
@@ -38,7 +38,7 @@ pub struct Contenders<'a> {
 
 /// The engine (reduced (+), left rule), the hand-written step and Boris for `problem`, the paper's
 /// initial data with any step and number of steps.
-pub fn contenders<'a>(system: &'a ChargedParticle, problem: &'a Problem) -> Result<Contenders<'a>, miette::Report> {
+pub fn contenders<'a>(system: &'a dyn DynSystem, problem: &'a Problem) -> Result<Contenders<'a>, miette::Report> {
     let steps = problem.steps;
     let h = problem.step;
     // The compiled closed-form step at every N (under `auto` a run of fewer than 5000 steps would
@@ -87,10 +87,10 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     // few per cent of the run, as in the long runs the engine is meant for.
     let steps = if settings.quick { 200 } else { 1_000_000 };
     print::heading("charged-particle", "generic engine (compiled closed-form step), hand-written step and Boris");
-    let system = ChargedParticle::default();
+    let system = built_in("charged_particle")?;
     // The paper's problem with h = 0.02 (T = 20 for 1000 steps).
     let problem = Problem { steps, ..ChargedParticle::paper_problem(1000) };
-    let Contenders { contenders, finals } = contenders(&system, &problem)?;
+    let Contenders { contenders, finals } = contenders(system.as_ref(), &problem)?;
     let title = format!("charged particle (paper §7.1), left rule, reduced (+), h = 0.02, {steps} steps");
     let comparison = compare(title, settings.schedule, contenders, &pairs())?;
     print::comparison(&comparison);

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use ddirac::ensemble::{MemberSystem, Rows};
 use ddirac::systems::DoubleSphericalPendulum;
-use ddirac::{Differentiation, DynSystem, Erased, OutputError, Problem, Rule, Variant};
+use ddirac::{Differentiation, OutputError, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -75,16 +75,15 @@ fn every_member_finishes(_: usize, outcome: ddirac::ensemble::Outcome) -> Result
 
 fn threads(settings: &Settings) -> Result<Comparison, miette::Report> {
     let (members, steps) = if settings.quick { (8, 1000) } else { (64, 10_000) };
-    let system = Erased(DoubleSphericalPendulum::default());
+    let system = super::built_in("double_spherical_pendulum")?;
     let reduced = method(Rule::Midpoint, true, Variant::Plus);
     let problems: Vec<Problem> = (0..members).map(|i| member_problem(i, members, steps)).collect();
     let contender = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
-        let (system, problems, method) = (&system, &problems, reduced.clone());
+        let (system, problems, method) = (system.as_ref(), &problems, reduced.clone());
         let run = move || {
-            let member = |i: usize| -> Result<_, OutputError> {
-                Ok((MemberSystem::Shared(system as &dyn DynSystem), problems[i].clone()))
-            };
+            let member =
+                |i: usize| -> Result<_, OutputError> { Ok((MemberSystem::Shared(system), problems[i].clone())) };
             pool.install(|| {
                 ddirac::ensemble::run(
                     0..problems.len(),
@@ -135,7 +134,7 @@ fn setup(settings: &Settings) -> Result<Comparison, miette::Report> {
             None => Ok(()),
         }
     };
-    let system = Erased(DoubleSphericalPendulum::default());
+    let system = super::built_in("double_spherical_pendulum")?;
     let long = member_problem(0, count, members * steps);
     let dual = ddirac::Method { differentiation: Differentiation::Dual, ..method(Rule::Midpoint, true, Variant::Plus) };
     let long_run = || {
@@ -159,18 +158,18 @@ fn setup(settings: &Settings) -> Result<Comparison, miette::Report> {
 
 fn sharing(settings: &Settings) -> Result<Comparison, miette::Report> {
     let (members, steps) = if settings.quick { (8, 5000) } else { (64, 5000) };
-    let shared = Erased(DoubleSphericalPendulum::default());
+    let shared = super::built_in("double_spherical_pendulum")?;
     let reduced = method(Rule::Midpoint, true, Variant::Plus);
     let problems: Vec<Problem> = (0..members).map(|i| member_problem(i, members, steps)).collect();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a thread pool");
     let contender = |own: bool| {
-        let (shared, problems, method, pool) = (&shared, &problems, reduced.clone(), &pool);
+        let (shared, problems, method, pool) = (shared.as_ref(), &problems, reduced.clone(), &pool);
         let run = move || {
             let member = |i: usize| -> Result<_, OutputError> {
                 let system = if own {
-                    MemberSystem::Own(Box::new(Erased(DoubleSphericalPendulum::default())))
+                    MemberSystem::Own(super::built_in("double_spherical_pendulum").map_err(|e| format!("{e}"))?)
                 } else {
-                    MemberSystem::Shared(shared as &dyn DynSystem)
+                    MemberSystem::Shared(shared)
                 };
                 Ok((system, problems[i].clone()))
             };

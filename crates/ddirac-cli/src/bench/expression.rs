@@ -1,5 +1,5 @@
 //! `expression`: the double spherical pendulum (paper §7.2) with its Lagrangian written as text
-//! (`ddirac::expression::ExpressionSystem`, the spec shared with the library's expression tests and
+//! (`ddirac::expression::ExpressionSpec::into_dyn`, the spec shared with the library's expression tests and
 //! benchmark) against the same Lagrangian in Rust (`systems::DoubleSphericalPendulum`): whole runs,
 //! reduced (+), midpoint rule, h = 0.01; and the chain of 50 pendula written as text against the
 //! built-in `PendulumChain<50>`, both type-erased as a spec runs them, compiled derivatives, time per
@@ -9,14 +9,13 @@
 
 use std::hint::black_box;
 
-use ddirac::expression::ExpressionSystem;
 use ddirac::systems::{DoubleSphericalPendulum, PendulumChain};
 use ddirac::{Differentiation, DynSystem, Method, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
 use super::harness::{compare, Comparison, Contender, Pair, Target};
-use super::{engine, integrate_once, max_difference, method, print, to_json, Settings};
+use super::{built_in, built_in_with, engine, integrate_once, max_difference, method, print, to_json, Settings};
 
 #[path = "../../../ddirac/tests/common/chain_text.rs"]
 mod chain_text;
@@ -52,19 +51,21 @@ struct ChainReport {
 pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let steps = if settings.quick { 200 } else { 1000 };
     print::heading("expression", "a Lagrangian written as text against the same in Rust");
-    let rust = DoubleSphericalPendulum::default();
-    let text = ExpressionSystem::<4>::new(&pendulum_text::double_spherical_pendulum_spec())
+    let rust = built_in("double_spherical_pendulum")?;
+    let text = pendulum_text::double_spherical_pendulum_spec()
+        .into_dyn()
         .map_err(|e| miette::miette!("the double spherical pendulum written as text does not compile: {e}"))?;
+    let (rust, text) = (rust.as_ref(), text.as_ref());
     let problem = Problem { steps, ..DoubleSphericalPendulum::paper_problem(10_000) };
     let reduced = method(Rule::Midpoint, true, Variant::Plus);
     let what = |name: &str| format!("double spherical pendulum ({name}), midpoint, reduced (+)");
     let finals = [
-        integrate_once(&what("Rust"), &rust, &problem, &reduced)?.final_q,
-        integrate_once(&what("text"), &text, &problem, &reduced)?.final_q,
+        integrate_once(&what("Rust"), rust, &problem, &reduced)?.final_q,
+        integrate_once(&what("text"), text, &problem, &reduced)?.final_q,
     ];
     let contenders = vec![
-        engine("Rust", &what("Rust"), &rust, &problem, reduced.clone())?,
-        engine("text", &what("text"), &text, &problem, reduced)?,
+        engine("Rust", &what("Rust"), rust, &problem, reduced.clone())?,
+        engine("text", &what("text"), text, &problem, reduced)?,
     ];
     let title = format!("double spherical pendulum, midpoint, reduced (+), h = 0.01, {steps} steps");
     let comparison = compare(title, settings.schedule, contenders, &[Pair::new("text", "Rust").target(TARGET)])?;
@@ -109,7 +110,7 @@ fn chain(settings: &Settings) -> Result<ChainReport, miette::Report> {
     let text = chain_text::chain_spec(LINKS)
         .into_dyn()
         .map_err(|e| miette::miette!("the chain of {LINKS} written as text does not compile: {e}"))?;
-    let built_in: Box<dyn DynSystem> = Box::new(ddirac::Erased(PendulumChain::<LINKS>::default()));
+    let built_in = built_in_with("pendulum_chain", &[("links", LINKS as f64)])?;
     let problem = PendulumChain::<LINKS>::problem(steps, 0.005);
     let compiled =
         Method { differentiation: Differentiation::Compiled, ..method(Rule::Midpoint, false, Variant::Plus) };

@@ -20,7 +20,7 @@ struct Report {
 pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let counts: [usize; 3] = if settings.quick { [100, 1000, 10_000] } else { [1000, 10_000, 100_000] };
     print::heading("linearity", "time per step against the number of steps");
-    let system = ChargedParticle::default();
+    let system = super::built_in("charged_particle")?;
     let problems: Vec<Problem> =
         counts.iter().map(|&steps| Problem { steps, ..ChargedParticle::paper_problem(1000) }).collect();
     let names: Vec<String> = counts.iter().map(|n| format!("{n} steps")).collect();
@@ -30,7 +30,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let mut contenders = vec![];
     for (name, problem) in names.iter().zip(&problems) {
         let what = format!("charged particle, left, reduced (+), h = 0.02, {name}");
-        contenders.push(engine(name, &what, &system, problem, reduced.clone())?);
+        contenders.push(engine(name, &what, system.as_ref(), problem, reduced.clone())?);
     }
     let pairs: Vec<Pair<'_>> = names[1..].iter().map(|n| Pair::new(n, &names[0])).collect();
     let title =

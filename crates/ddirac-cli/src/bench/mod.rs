@@ -61,7 +61,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
-use ddirac::{integrate, Method, OutputOptions, Problem, Rule, Summary, System, Variant};
+use ddirac::{DynSystem, Method, OutputOptions, Problem, Rule, Summary, Variant};
 use serde_json::{json, Map, Value};
 
 use crate::diagnostics::CliError;
@@ -239,26 +239,42 @@ fn failed(what: &str, error: ddirac::Error) -> miette::Report {
     miette::Report::new(CliError::Integration(error)).wrap_err(format!("the run `{what}` failed"))
 }
 
+/// The built-in system `name` with its default parameters, type-erased as a spec runs it.
+///
+/// The engine runs of the benchmarks go through the systems the library has erased (the registry,
+/// `ExpressionSpec::into_dyn`), so that they time what a spec runs and this crate instantiates no
+/// copy of the engine of its own (a typed system here would be compiled into it a second time).
+pub fn built_in(name: &str) -> Result<Box<dyn DynSystem>, miette::Report> {
+    built_in_with(name, &[])
+}
+
+/// [`built_in`] with some parameters set.
+pub fn built_in_with(name: &str, parameters: &[(&str, f64)]) -> Result<Box<dyn DynSystem>, miette::Report> {
+    let entry = ddirac::systems::find(name).ok_or_else(|| miette::miette!("no built-in system `{name}`"))?;
+    let parameters: Vec<(String, f64)> = parameters.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+    (entry.build)(&parameters).map_err(|e| miette::miette!("the built-in system `{name}` cannot be built: {e}"))
+}
+
 /// One engine run reporting only its last row.
-pub fn integrate_once<S: System<N>, const N: usize>(
+pub fn integrate_once(
     what: &str,
-    system: &S,
+    system: &dyn DynSystem,
     problem: &Problem,
     method: &Method,
 ) -> Result<Summary, miette::Report> {
-    integrate(system, problem, method, &LAST_ROW_ONLY, &mut |_| Ok(())).map_err(|e| failed(what, e))
+    system.integrate(problem, method, &LAST_ROW_ONLY, &mut |_| Ok(())).map_err(|e| failed(what, e))
 }
 
 /// An engine run as a contender called `name`: run once first, so that a failing run is reported
 /// before any timing, and to count its Newton iterations and Jacobian evaluations.
-pub fn engine<'a, S: System<N>, const N: usize>(
+pub fn engine<'a>(
     name: &str,
     what: &str,
-    system: &'a S,
+    system: &'a dyn DynSystem,
     problem: &'a Problem,
     method: Method,
 ) -> Result<Contender<'a>, miette::Report> {
-    let run = move || integrate(black_box(system), black_box(problem), &method, &LAST_ROW_ONLY, &mut |_| Ok(()));
+    let run = move || black_box(system).integrate(black_box(problem), &method, &LAST_ROW_ONLY, &mut |_| Ok(()));
     timed_run(name, what, problem.steps, run)
 }
 

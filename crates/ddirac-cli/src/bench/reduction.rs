@@ -5,13 +5,13 @@
 //! then reduced against unreduced for the other engine runs of `benches/steps.rs` (1000 steps): the
 //! charged particle (left and midpoint rules, (+) and (−)), Kepler and the heavy top ((+)).
 
-use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler};
-use ddirac::{solve, InitialMomentum, Method, NewtonOptions, OutputOptions, Problem, Rule, System, Variant};
+use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum};
+use ddirac::{DynSystem, InitialMomentum, Method, NewtonOptions, OutputOptions, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
 use super::harness::{compare, Comparison, Pair, Target};
-use super::{engine, max_difference, method, method_name, print, to_json, Settings};
+use super::{built_in, engine, max_difference, method, method_name, print, to_json, Settings};
 
 /// The paper's target: reduced at least 1.75 times as fast as unreduced.
 const SPEED_UP: Target = Target::AtLeast(1.75);
@@ -61,16 +61,18 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let steps = if settings.quick { 1000 } else { 10_000 };
     print::heading("reduction", "reduced against unreduced equations");
 
-    let system = DoubleSphericalPendulum::default();
+    let geometry = DoubleSphericalPendulum::default();
+    let system = built_in("double_spherical_pendulum")?;
+    let system = system.as_ref();
     let problem = Problem { steps, ..DoubleSphericalPendulum::paper_problem(10_000) };
     let plus = method(Rule::Midpoint, true, Variant::Plus);
     let minus = method(Rule::Midpoint, true, Variant::Minus);
     let unreduced = method(Rule::Midpoint, false, Variant::Plus);
     let what = |m: &Method| format!("double spherical pendulum, midpoint, {}", method_name(m));
     let contenders = vec![
-        engine("reduced (+)", &what(&plus), &system, &problem, plus.clone())?,
-        engine("reduced (−)", &what(&minus), &system, &problem, minus.clone())?,
-        engine("unreduced (+)", &what(&unreduced), &system, &problem, unreduced.clone())?,
+        engine("reduced (+)", &what(&plus), system, &problem, plus.clone())?,
+        engine("reduced (−)", &what(&minus), system, &problem, minus.clone())?,
+        engine("unreduced (+)", &what(&unreduced), system, &problem, unreduced.clone())?,
     ];
     let title = format!("double spherical pendulum (paper §7.2), midpoint, h = 0.01, {steps} steps");
     let pendulum = compare(
@@ -86,8 +88,14 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
 
     let rows = |m: &Method| -> Result<(Vec<f64>, Vec<Vec<f64>>), miette::Report> {
         let output = OutputOptions { every: EVERY, wrap_angles: false };
-        let solution = solve(&system, &problem, m, &output).map_err(|e| super::failed(&what(m), e))?;
-        Ok((solution.t, solution.q))
+        let (mut t, mut q) = (vec![], vec![]);
+        let mut keep = |row: &ddirac::Row<'_>| {
+            t.push(row.t);
+            q.push(row.q.to_vec());
+            Ok(())
+        };
+        system.integrate(&problem, m, &output, &mut keep).map_err(|e| super::failed(&what(m), e))?;
+        Ok((t, q))
     };
     let mut agreement = vec![];
     println!("    agreement, max over rows every {EVERY} steps and coordinates of |q_reduced − q_unreduced|:");
@@ -114,10 +122,10 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
             let bobs = |rows: &[Vec<f64>]| -> Vec<[f64; 3]> {
                 rows.iter()
                     .filter_map(|q| <[f64; 4]>::try_from(q.as_slice()).ok())
-                    .map(|q| system.second_bob(&q))
+                    .map(|q| geometry.second_bob(&q))
                     .collect()
             };
-            let position = max_difference(&bobs(&q), &bobs(&reference)) / (system.l1 + system.l2);
+            let position = max_difference(&bobs(&q), &bobs(&reference)) / (geometry.l1 + geometry.l2);
             let met = difference <= AGREEMENT;
             let above = first_above_target.map_or(String::new(), |t| format!(", above {AGREEMENT:e} from t = {t}"));
             println!(
@@ -147,14 +155,14 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
 
     // The engine runs of benches/steps.rs, 1000 steps each.
     let steps = if settings.quick { 200 } else { 1000 };
-    let particle = ChargedParticle::default();
+    let particle = built_in("charged_particle")?;
     // The paper's problem with h = 0.02.
     let particle_problem = Problem { steps, ..ChargedParticle::paper_problem(1000) };
     let others = vec![
         against_unreduced(
             settings,
             "charged particle, left, h = 0.02",
-            &particle,
+            particle.as_ref(),
             &particle_problem,
             Rule::Left,
             true,
@@ -162,7 +170,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         against_unreduced(
             settings,
             "charged particle, midpoint, h = 0.02",
-            &particle,
+            particle.as_ref(),
             &particle_problem,
             Rule::Midpoint,
             true,
@@ -171,7 +179,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         against_unreduced(
             settings,
             "Kepler, eccentric orbit, midpoint, h = 0.01",
-            &Kepler::default(),
+            built_in("kepler")?.as_ref(),
             &Problem::new(0.01, steps, vec![1.0, 0.3], InitialMomentum::Momentum(vec![0.2, 1.2])),
             Rule::Midpoint,
             false,
@@ -180,7 +188,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         against_unreduced(
             settings,
             "heavy top, fast spin, midpoint, h = 0.001",
-            &HeavyTop::default(),
+            built_in("heavy_top")?.as_ref(),
             &Problem::new(1e-3, steps, vec![0.0, 0.6, 0.0], InitialMomentum::Velocity(vec![0.4, 0.0, 30.0])),
             Rule::Midpoint,
             false,
@@ -190,10 +198,10 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
 }
 
 /// Reduced (+), with `minus` also reduced (−), against unreduced (+).
-fn against_unreduced<S: System<N>, const N: usize>(
+fn against_unreduced(
     settings: &Settings,
     name: &str,
-    system: &S,
+    system: &dyn DynSystem,
     problem: &Problem,
     rule: Rule,
     minus: bool,

@@ -1,30 +1,31 @@
 //! `scaling`: time per step against the number of coordinates, for a planar chain of N pendula
-//! (`systems::PendulumChain<N>`, released from rest in one arch; midpoint rule, unreduced, as the
+//! (built-in `pendulum_chain`, `systems::PendulumChain<N>` as a spec runs it, released from rest in one arch; midpoint rule, unreduced, as the
 //! chain has no symmetry; h = 0.01) with N = 2 … 50, all sizes timed side by side. Between two
 //! sizes the ratio of times per step gives the exponent p of time ∝ N^p.
 
 use std::hint::black_box;
 
 use ddirac::systems::PendulumChain;
-use ddirac::{integrate, Differentiation, Method, Rule, Variant};
+use ddirac::{Differentiation, Method, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
 use super::harness::{compare, Comparison, Contender, Pair};
-use super::{method, print, timed_run, to_json, Settings, LAST_ROW_ONLY};
+use super::{built_in_with, method, print, timed_run, to_json, Settings, LAST_ROW_ONLY};
 
 /// Step size.
 const STEP: f64 = 0.01;
 
 /// The chain of `N` links as a contender named `N = …` doing `steps` steps.
 fn chain<const N: usize>(steps: usize) -> Result<(usize, Contender<'static>), miette::Report> {
-    let system = PendulumChain::<N>::default();
+    let system = built_in_with("pendulum_chain", &[("links", N as f64)])?;
     let problem = PendulumChain::<N>::problem(steps, STEP);
     // Dual numbers at every size: under `auto` the choice between compiling and dual numbers depends
     // on the size (its cost estimate), which would mix two paths in one curve.
     let unreduced = Method { differentiation: Differentiation::Dual, ..method(Rule::Midpoint, false, Variant::Plus) };
     let what = format!("chain of {N} pendula, midpoint, unreduced, dual numbers, h = {STEP}, {steps} steps");
-    let run = move || integrate(black_box(&system), black_box(&problem), &unreduced, &LAST_ROW_ONLY, &mut |_| Ok(()));
+    let run =
+        move || black_box(system.as_ref()).integrate(black_box(&problem), &unreduced, &LAST_ROW_ONLY, &mut |_| Ok(()));
     Ok((N, timed_run(&name(N), &what, steps, run)?))
 }
 

@@ -65,7 +65,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         "charged particle (paper §7.1), T = 20, error against time; the engine's compiled closed-form step at every N",
     );
     let steps: &[usize] = if settings.quick { &QUICK_STEPS } else { &STEPS };
-    let system = ChargedParticle::default();
+    let system = super::built_in("charged_particle")?;
     println!(
         "  error ‖q(T) − q_N‖ against the exact motion and median time per step of each, timed side by side for each N; \
          Newton corrections (it.) and Jacobians (Jac.) per step of the engine"
@@ -77,7 +77,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let mut rows = vec![];
     for &n in steps {
         let problem = ChargedParticle::paper_problem(n);
-        let Contenders { contenders, finals } = contenders(&system, &problem)?;
+        let Contenders { contenders, finals } = contenders(system.as_ref(), &problem)?;
         let title = format!("charged particle, T = 20, N = {n}");
         let comparison = compare(title, settings.schedule, contenders, &pairs())?;
         let errors: BTreeMap<&str, f64> = NAMES.iter().zip(&finals).map(|(&name, q)| (name, error(q))).collect();
