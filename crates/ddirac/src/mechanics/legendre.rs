@@ -87,17 +87,27 @@ pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
     (d.value, d.da, d.dadb)
 }
 
+/// Where the mismatch ‖∂L/∂v − p‖∞ of [`velocity`] counts as round-off, relative to ‖p‖∞ + ‖∂²L/∂v²‖ ‖v‖∞:
+/// about 450 ε, what sums of a few hundred terms leave (a chain of 50 links: 24 ε).
+pub const ROUND_OFF: f64 = 1e-13;
+
 /// A velocity v with ∂L/∂v(q, v) = p, by chord Newton on ∂L/∂v(q, v) = p from v = 0 (∂²L/∂v² is
 /// evaluated at the first iterate and again only where the mismatch stops decreasing; one
-/// correction is exact for a Lagrangian quadratic in v). Where ∂²L/∂v² is singular the
+/// correction is exact for a Lagrangian quadratic in v). The iteration ends when a correction is
+/// below round-off, or when the mismatch stops decreasing at the round-off level of ∂L/∂v
+/// ([`ROUND_OFF`] of ‖p‖∞ + ‖∂²L/∂v²‖ ‖v‖∞) or after a correction made with ∂²L/∂v² of the iterate
+/// it started from: the iterate before is returned. Where ∂²L/∂v² is singular the
 /// undetermined velocity components stay 0. Returns the velocity and the remaining mismatch
 /// ‖∂L/∂v − p‖∞.
 pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N]) -> ([f64; N], f64) {
     let p = SVector::from(*p);
     let mut v = SVector::<f64, N>::zeros();
+    let mut previous = v;
     let mut mismatch = f64::INFINITY;
     let mut lu: Option<Factorization<N>> = None;
-    let mut fresh = false;
+    // Whether ∂²L/∂v² was evaluated at this iterate, and whether the correction that led to it used
+    // one evaluated at the iterate it started from.
+    let (mut fresh, mut fresh_correction) = (false, false);
     for _ in 0..40 {
         let grad = if lu.is_none() {
             let (_, grad, hess) = velocity_hessian(system, q, &v.into());
@@ -109,7 +119,11 @@ pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64
         let r = grad - p;
         let new_mismatch = r.amax();
         if !new_mismatch.is_finite() || new_mismatch >= mismatch {
-            if fresh {
+            let scale = p.amax() + lu.as_ref().map_or(0.0, Factorization::scale) * previous.amax();
+            if fresh || fresh_correction || mismatch <= ROUND_OFF * scale {
+                // Nothing left to gain (a fresh ∂²L/∂v² would only move v within round-off): the
+                // best iterate is the one before.
+                v = previous;
                 break;
             }
             // The kept ∂²L/∂v² no longer serves: evaluate it here and go on from this iterate.
@@ -118,8 +132,9 @@ pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64
         }
         mismatch = new_mismatch;
         let Some(delta) = lu.as_ref().map(|lu| lu.solve(&r)) else { break };
+        previous = v;
         v -= delta;
-        fresh = false;
+        (fresh_correction, fresh) = (fresh, false);
         if delta.amax() <= 1e-15 * (1.0 + v.amax()) {
             mismatch = (SVector::from(momentum(system, q, &v.into())) - p).amax();
             break;
