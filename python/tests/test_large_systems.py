@@ -1,5 +1,5 @@
-"""Text systems of 17 to 50 coordinates from Python: against the built-in chain of pendula, against exact
-solutions between the engine's sizes, and the refusal above 50."""
+"""Text systems of 17 to 100 coordinates from Python: against the built-in chain of pendula, against exact
+solutions between the engine's sizes, and the refusal above 100."""
 
 import math
 import threading
@@ -66,6 +66,6 @@ def test_seventeen_oscillators_follow_the_midpoint_rules_exact_rotation():
     np.testing.assert_allclose(run.q, exact, rtol=0, atol=1e-11)
 
 
-def test_more_than_fifty_coordinates_are_refused_with_the_largest_size():
-    with pytest.raises(ddirac.Error, match="51 coordinates; text systems have at most 50"):
-        text_chain(51)
+def test_more_than_a_hundred_coordinates_are_refused_with_the_largest_size():
+    with pytest.raises(ddirac.Error, match="101 coordinates; text systems have at most 100"):
+        text_chain(101)

@@ -47,6 +47,13 @@ pub(crate) fn lagrangian<D: Scalar, const N: usize>(v: &[D; N], used: usize, mas
 /// measured): the largest entry of ∂²L/∂v² at a reference point, or of ∂²L/∂q∂v where L is linear
 /// in v; 1 where neither is finite and nonzero at any reference point.
 pub(crate) fn mass<S: System<N>, const N: usize>(system: &S) -> f64 {
+    // Its dual numbers need the stack a step needs (`crate::stack`).
+    crate::stack::enough::<N, _>(|| reference_scale(system))
+}
+
+// Not inlined into `mass`: its dual numbers' arrays would be part of the frame that decides on the stack.
+#[inline(never)]
+fn reference_scale<S: System<N>, const N: usize>(system: &S) -> f64 {
     struct Lagrangian<'a, S>(&'a S);
     impl<S: System<N>, const N: usize> PairFunction<N> for Lagrangian<'_, S> {
         fn eval<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {

@@ -398,15 +398,15 @@ fn system_declarations_are_checked() {
     let empty = ExpressionSpec { lagrangian: "1".into(), ..ExpressionSpec::default() };
     assert!(matches!(empty.into_dyn().err(), Some(ExpressionError::NoCoordinates)));
     let many = ExpressionSpec {
-        coordinates: (0..51).map(|i| Coordinate::shape(&format!("q{i}"))).collect(),
+        coordinates: (0..101).map(|i| Coordinate::shape(&format!("q{i}"))).collect(),
         lagrangian: "q0_dot^2".into(),
         ..ExpressionSpec::default()
     };
     assert_eq!(
         many.into_dyn().err().map(|e| e.to_string()).as_deref(),
         Some(
-            "the system has 51 coordinates; text systems have at most 50 (the engine is built for 1–16, 20, 24, \
-             32, 40, 50 coordinates, and a count between these runs in the next one up)"
+            "the system has 101 coordinates; text systems have at most 100 (the engine is built for 1–16, 20, 24, \
+             32, 40, 50, 64, 80, 100 coordinates, and a count between these runs in the next one up)"
         )
     );
     let sixteen = ExpressionSpec {

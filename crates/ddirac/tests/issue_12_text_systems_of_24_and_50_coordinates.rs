@@ -2,7 +2,7 @@
 //! runs through the type-erased layer (what specs and Python use) and equals the built-in
 //! `pendulum_chain` of as many links — its Lagrangian and gradients at random points, and its
 //! trajectories with dual numbers and with compiled derivatives. Counts between the engine's sizes are
-//! in `issue_12_text_systems_of_any_size_up_to_50.rs`.
+//! in `issue_12_text_systems_of_any_size_up_to_100.rs`.
 
 #[path = "common/chain_text.rs"]
 mod chain_text;

@@ -211,7 +211,7 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
 impl ExpressionSpec {
     /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares
-    /// (at most the largest of [`crate::SIZES`], 50). A count that is not itself one of the sizes runs
+    /// (at most the largest of [`crate::SIZES`], 100). A count that is not itself one of the sizes runs
     /// in the engine of the next size up with padding coordinates that it hides ([`crate::padding`]).
     ///
     /// ```
@@ -224,8 +224,8 @@ impl ExpressionSpec {
     /// };
     /// assert_eq!(chain(24).into_dyn().unwrap().coordinates().len(), 24);
     /// assert_eq!(chain(17).into_dyn().unwrap().coordinates().len(), 17);
-    /// let error = chain(51).into_dyn().err().unwrap();
-    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 51 }));
+    /// let error = chain(101).into_dyn().err().unwrap();
+    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 101 }));
     /// ```
     pub fn into_dyn(self) -> Result<Box<dyn DynSystem>, ExpressionError> {
         let found = self.coordinates.len();
