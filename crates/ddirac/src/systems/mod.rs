@@ -85,7 +85,12 @@ fn with_overrides<S: Parameters>(mut system: S, overrides: &[(String, f64)]) -> 
 }
 
 /// The built-in systems.
-pub const BUILT_IN: &[BuiltIn] = &[
+///
+/// A `static`, not a `const`: a constant is copied into every crate that names it, and with it the
+/// closures that build each system, each of which instantiates the whole engine for its system type;
+/// the command line, the Python module and the tests each compiled six copies of the engine of their
+/// own that way. A static is one value, and its builders are compiled once, here.
+pub static BUILT_IN: &[BuiltIn] = &[
     BuiltIn {
         name: "charged_particle",
         description: "charged particle in a constant magnetic field, Kaluza–Klein form (paper §7.1)",
