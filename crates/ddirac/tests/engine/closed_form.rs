@@ -3,7 +3,7 @@
 //! Newton iteration. They agree with the hand-written step of the same scheme, with the dual-number
 //! Newton path and with an exact discrete solution; runs whose equations are not linear keep Newton.
 
-mod common;
+use crate::common;
 
 use common::max_scaled_row_diff;
 use ddirac::baselines::charged_particle_step::{ChargedParticleStep, ReducedState};

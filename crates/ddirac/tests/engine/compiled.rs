@@ -2,9 +2,8 @@
 //! unreduced, and a system written as text run the same trajectories both ways (within what the
 //! Newton tolerance allows), and a Lagrangian that branches on a value is refused, not compiled.
 
-mod common;
-#[path = "common/pendulum_text.rs"]
-mod pendulum_text;
+use crate::common;
+use crate::pendulum_text;
 
 use common::max_scaled_row_diff;
 use ddirac::expression::ExpressionSystem;

@@ -9,7 +9,7 @@
 //! trapezoid rules are of order 2 there and the left rule of order 1, which also shows the fitted
 //! slope can tell the orders apart.
 
-mod common;
+use crate::common;
 
 use common::{log_log_slope, method, run};
 use ddirac::systems::ChargedParticle;

@@ -1,7 +1,7 @@
 //! Bad input and failed steps are reported as [`Error`] values, never as panics, and their messages
 //! name what is wrong: the input, the step, or the coordinate.
 
-mod common;
+use crate::common;
 
 use ddirac::mechanics::legendre;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};

@@ -13,7 +13,7 @@
 //! The reference dynamics below is written from the bob positions for links of any masses and
 //! lengths, independently of the library's Lagrangian.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

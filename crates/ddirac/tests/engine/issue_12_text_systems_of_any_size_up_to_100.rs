@@ -12,11 +12,8 @@
 //! - Errors name the system's own sizes, the stepper restarts bit for bit, the check counts the
 //!   system's own coordinates, and more than 100 coordinates are refused.
 
-#[path = "common/chain_text.rs"]
-mod chain_text;
-mod common;
-#[path = "common/pendulum_text.rs"]
-mod pendulum_text;
+use crate::chain_text;
+use crate::pendulum_text;
 
 use chain_text::chain_spec;
 use ddirac::expression::{ChartSpec, ExpressionError, ExpressionSpec};

@@ -9,7 +9,7 @@
 //! * Energy: a variational integrator does not conserve the Hamiltonian exactly, but keeps it
 //!   oscillating about its initial value with no drift over long runs.
 
-mod common;
+use crate::common;
 
 use common::{method, run};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};

@@ -4,7 +4,7 @@
 //! the paper's two systems (connection K = 0) and for two bodies with the centre-of-mass connection
 //! K = −m2/(m1 + m2)·I, where h_{d,Q}, h_{d,Σ} and h_d^0 are all non-zero.
 
-mod common;
+use crate::common;
 
 use common::{max_abs_diff, max_row_diff, max_scaled_row_diff, method, relative_diff, run};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, TwoBody};

@@ -7,8 +7,7 @@
 //! iteration now stops when the mismatch stops decreasing at the round-off level
 //! (`legendre::ROUND_OFF`).
 
-#[path = "common/chain_text.rs"]
-mod chain_text;
+use crate::chain_text;
 
 use std::cell::Cell;
 

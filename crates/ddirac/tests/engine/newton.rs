@@ -2,7 +2,7 @@
 //! classical Newton (a Jacobian at every iterate): the same trajectories within what the Newton
 //! tolerance allows, with far fewer Jacobians.
 
-mod common;
+use crate::common;
 
 use common::{max_scaled_row_diff, run};
 use ddirac::newton::KeptJacobian;

@@ -14,7 +14,7 @@
 //! and the (−) run must move forward like the (+) and unreduced runs. These tests would fail under
 //! the printed signs.
 
-mod common;
+use crate::common;
 
 use common::{max_abs_diff, method, run};
 use ddirac::systems::{ChargedParticle, TABLE_1};

@@ -3,7 +3,7 @@
 //! flow (reduction commutes with composition), and against the structure a composition must keep:
 //! the momentum map exactly, a symplectic and time-symmetric one-step map.
 
-mod common;
+use crate::common;
 
 use common::{log_log_slope, max_scaled_row_diff, relative_diff, run};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, Kepler, TwoBody};

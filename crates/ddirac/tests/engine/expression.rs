@@ -10,8 +10,7 @@ use ddirac::{solve, Coordinate, DiscreteLagrangian, Method, OutputOptions, Rule,
 use nalgebra::SVector;
 use num_dual::{hessian, Dual2SVec64, DualNum};
 
-#[path = "common/pendulum_text.rs"]
-mod pendulum_text;
+use crate::pendulum_text;
 use pendulum_text::double_spherical_pendulum_spec;
 
 fn assert_close(computed: f64, expected: f64, relative: f64, what: &str) {

@@ -4,9 +4,8 @@
 //! trajectories with dual numbers and with compiled derivatives. Counts between the engine's sizes are
 //! in `issue_12_text_systems_of_any_size_up_to_100.rs`.
 
-#[path = "common/chain_text.rs"]
-mod chain_text;
-mod common;
+use crate::chain_text;
+use crate::common;
 
 use chain_text::chain_spec;
 use common::{max_scaled_row_diff, sampler};
