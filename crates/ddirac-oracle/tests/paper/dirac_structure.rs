@@ -10,7 +10,7 @@ use ddirac_oracle::dirac_structure::*;
 use ddirac_oracle::reduced_lagrangian::{ld_partials, partials_minus, partials_plus};
 use ddirac_oracle::trivialization::SplitVector;
 
-mod common;
+use crate::common;
 use common::sampler;
 
 /// One step of a trajectory in split form: (x_k, g_k, w_k, μ_k) and the same at k + 1.

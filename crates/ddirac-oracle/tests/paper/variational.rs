@@ -14,7 +14,7 @@ use ddirac::{
 use ddirac_oracle::dirac_structure::Signs;
 use ddirac_oracle::pontryagin::*;
 
-mod common;
+use crate::common;
 use common::sampler;
 
 const STATIONARY: f64 = 1e-9;
