@@ -14,8 +14,9 @@ use std::time::Instant;
 
 use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, CompileCost, NativeProgram, Program, Traced};
+use ddirac::dim::Fixed;
 use ddirac::expression::{ExpressionSpec, ExpressionSystem};
-use ddirac::newton::{KeptJacobian, ACROSS_SOLVES};
+use ddirac::newton::{dual_relative_cost, ACROSS_SOLVES};
 use ddirac::systems::PendulumChain;
 use ddirac::Scalar;
 use ddirac::{Coordinate, DiscreteLagrangian, Rule, System};
@@ -24,7 +25,7 @@ const STEP: f64 = 0.01;
 
 struct Ld<S, const N: usize>(DiscreteLagrangian<S>, [f64; N]);
 
-impl<S: System<N>, const N: usize> PairFunction<N> for Ld<S, N> {
+impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for Ld<S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.0.eval_local(&self.1, a, b)
     }
@@ -82,12 +83,12 @@ fn row<S: System<N>, const N: usize>(name: &str, system: &S, base: [f64; N]) {
     let (native_residual, native_jacobian) = (call(first), call(mixed));
     let f = Ld(ld, base);
     let dual_residual = per_call(|| {
-        black_box(ad::first_or_mixed(&f, &[0.0; N], black_box(&z), false));
+        black_box(ad::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), false));
     });
     let dual_jacobian = per_call(|| {
-        black_box(ad::first_or_mixed(&f, &[0.0; N], black_box(&z), true));
+        black_box(ad::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), true));
     });
-    let kept = KeptJacobian::<N>::dual_relative_cost() >= ACROSS_SOLVES;
+    let kept = dual_relative_cost(N) >= ACROSS_SOLVES;
     let step = |residual: f64, jacobian: f64| if kept { 8.0 * residual } else { jacobian + 2.0 * residual };
     println!(
         "{name:>13} {N:>3} {:>7} {:>7} {:>10.2e} {:>10.3} {:>10.3} {:>9.1} {:>9.1} {:>9.2} {:>9.2}",

@@ -29,6 +29,7 @@ mod check;
 pub mod compiled;
 pub mod composition;
 pub mod diagnostics;
+pub mod dim;
 mod energy_jump;
 pub mod ensemble;
 mod erased;

@@ -12,8 +12,7 @@
 //! classical step would; both stop on the same test. A residual without its Jacobian costs a
 //! fraction of one with it (see `ad`), the more so the more coordinates.
 
-use nalgebra::{SMatrix, SVector};
-
+use crate::dim::{Column, Dim, MatrixOf};
 use crate::linalg::Factorization;
 
 /// Tolerance and iteration limit of the Newton solver.
@@ -131,7 +130,8 @@ pub struct NewtonFailure {
 /// Solves `r(z) = 0` by classical Newton starting from `z`, which holds the root on success.
 ///
 /// `eval(z)` returns the residual and its Jacobian. `residual_scale` sets the units of the residual
-/// test (see [`NewtonOptions::tolerance`]).
+/// test (see [`NewtonOptions::tolerance`]). `z` is an `SVector<f64, N>` or a `DVector<f64>`
+/// ([`Column`]).
 ///
 /// ```
 /// use nalgebra::{SMatrix, SVector};
@@ -144,14 +144,15 @@ pub struct NewtonFailure {
 /// assert!((z[0] - 2f64.sqrt()).abs() < 1e-14);
 /// assert!(stats.iterations <= 6);
 /// ```
-pub fn solve<const N: usize>(
-    z: &mut SVector<f64, N>,
+pub fn solve<V: Column>(
+    z: &mut V,
     residual_scale: f64,
     options: &NewtonOptions,
-    mut eval: impl FnMut(&SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>),
+    mut eval: impl FnMut(&V) -> (V, MatrixOf<V>),
 ) -> Result<NewtonStats, NewtonFailure> {
     let options = NewtonOptions { reuse_jacobian: false, ..*options };
-    solve_with(z, residual_scale, &options, &mut KeptJacobian::new(), |z, _| {
+    let mut kept = KeptJacobian::new(z.dim());
+    solve_with(z, residual_scale, &options, &mut kept, |z, _| {
         let (r, j) = eval(z);
         (r, Some(j))
     })
@@ -159,41 +160,45 @@ pub fn solve<const N: usize>(
 
 /// The factorized Jacobian a chord solve leaves for the next one, with how well it served.
 #[derive(Debug, Clone)]
-pub struct KeptJacobian<const N: usize> {
-    lu: Option<Factorization<N>>,
+pub struct KeptJacobian<Dm: Dim> {
+    lu: Option<Factorization<Dm>>,
     corrections: usize,
     relative_cost: usize,
 }
 
-impl<const N: usize> Default for KeptJacobian<N> {
-    fn default() -> Self {
-        Self::new()
-    }
+/// The cost of a Jacobian in residuals when both come from dual numbers for `n` unknowns, estimated
+/// by the flop counts of a product of the dual numbers that compute them: (3n² + 4n + 1) / (4n + 1)
+/// (see `ad`).
+///
+/// ```
+/// assert_eq!(ddirac::newton::dual_relative_cost(8), 6);
+/// assert_eq!(ddirac::newton::dual_relative_cost(9), 7);
+/// ```
+pub fn dual_relative_cost(n: usize) -> usize {
+    (3 * n * n + 4 * n + 1) / (4 * n + 1)
 }
 
-impl<const N: usize> KeptJacobian<N> {
-    /// Nothing kept yet; a Jacobian costs what [`Self::dual_relative_cost`] says.
-    pub fn new() -> Self {
-        Self::with_relative_cost(Self::dual_relative_cost())
+/// The cost of a Jacobian in residuals for `n` unknowns when both are compiled programs of
+/// `residual` and `jacobian` instructions: the program and a factorization (about 15 n³
+/// instructions, measured for n = 4) against the program and a solve (about 10 n²).
+///
+/// ```
+/// assert_eq!(ddirac::newton::compiled_relative_cost(4, 100, 400), 4);
+/// ```
+pub fn compiled_relative_cost(n: usize, residual: usize, jacobian: usize) -> usize {
+    (jacobian + 15 * n * n * n) / (residual + 10 * n * n).max(1)
+}
+
+impl<Dm: Dim> KeptJacobian<Dm> {
+    /// Nothing kept yet for `dim` unknowns; a Jacobian costs what [`dual_relative_cost`] says.
+    pub fn new(dim: Dm) -> Self {
+        Self::with_relative_cost(dual_relative_cost(dim.n()))
     }
 
     /// Nothing kept yet; a Jacobian with its factorization costs `relative_cost` residuals with their
     /// solve.
     pub fn with_relative_cost(relative_cost: usize) -> Self {
         Self { lu: None, corrections: 0, relative_cost }
-    }
-
-    /// The cost of a Jacobian in residuals when both come from dual numbers, estimated by the flop
-    /// counts of a product of the dual numbers that compute them: (3n² + 4n + 1) / (4n + 1) (see `ad`).
-    pub fn dual_relative_cost() -> usize {
-        (3 * N * N + 4 * N + 1) / (4 * N + 1)
-    }
-
-    /// The cost of a Jacobian in residuals when both are compiled programs of `residual` and
-    /// `jacobian` instructions: the program and a factorization (about 15 n³ instructions, measured
-    /// for n = 4) against the program and a solve (about 10 n²).
-    pub fn compiled_relative_cost(residual: usize, jacobian: usize) -> usize {
-        (jacobian + 15 * N * N * N) / (residual + 10 * N * N).max(1)
     }
 
     /// Whether a Jacobian is kept from one solve to the next at all: when it costs at least
@@ -223,9 +228,9 @@ impl<const N: usize> KeptJacobian<N> {
 ///
 /// ```
 /// use nalgebra::{SMatrix, SVector};
-/// use ddirac::newton::{solve_with, KeptJacobian};
+/// use ddirac::{dim::Fixed, newton::{solve_with, KeptJacobian}};
 /// // z³ = 2 from z = 1.2: one Jacobian serves every correction.
-/// let (mut z, mut kept) = (SVector::<f64, 1>::new(1.2), KeptJacobian::new());
+/// let (mut z, mut kept) = (SVector::<f64, 1>::new(1.2), KeptJacobian::new(Fixed));
 /// let stats = solve_with(&mut z, 1.0, &Default::default(), &mut kept, |z, with_jacobian| {
 ///     let r = SVector::<f64, 1>::new(z[0].powi(3) - 2.0);
 ///     (r, with_jacobian.then(|| SMatrix::<f64, 1, 1>::new(3.0 * z[0] * z[0])))
@@ -235,12 +240,12 @@ impl<const N: usize> KeptJacobian<N> {
 /// assert_eq!(stats.jacobians, 1);
 /// assert!(stats.iterations > 2);
 /// ```
-pub fn solve_with<const N: usize>(
-    z: &mut SVector<f64, N>,
+pub fn solve_with<V: Column>(
+    z: &mut V,
     residual_scale: f64,
     options: &NewtonOptions,
-    kept: &mut KeptJacobian<N>,
-    eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
+    kept: &mut KeptJacobian<V::Dim>,
+    eval: impl FnMut(&V, bool) -> (V, Option<MatrixOf<V>>),
 ) -> Result<NewtonStats, NewtonFailure> {
     let reuse =
         options.reuse_jacobian && kept.across_solves() && kept.lu.is_some() && kept.corrections <= kept.budget();
@@ -255,31 +260,33 @@ pub fn solve_with<const N: usize>(
     result
 }
 
-fn chord<const N: usize>(
-    z: &mut SVector<f64, N>,
+fn chord<V: Column>(
+    z: &mut V,
     residual_scale: f64,
     options: &NewtonOptions,
-    kept: &mut Option<Factorization<N>>,
-    mut eval: impl FnMut(&SVector<f64, N>, bool) -> (SVector<f64, N>, Option<SMatrix<f64, N, N>>),
+    kept: &mut Option<Factorization<V::Dim>>,
+    mut eval: impl FnMut(&V, bool) -> (V, Option<MatrixOf<V>>),
 ) -> Result<NewtonStats, NewtonFailure> {
+    let dim = z.dim();
     let (mut iterations, mut jacobians) = (0, 0);
-    let mut evaluate = |kept: &mut Option<Factorization<N>>, z: &SVector<f64, N>, with_jacobian: bool, iterations| {
+    let mut evaluate = |kept: &mut Option<Factorization<V::Dim>>, z: &V, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);
-        let residual = r.amax();
-        let finite = residual.is_finite() && jac.as_ref().is_none_or(|j| j.iter().all(|x| x.is_finite()));
+        let residual = V::Dim::amax(&r);
+        let finite = residual.is_finite()
+            && jac.as_ref().is_none_or(|j| V::Dim::matrix_entries(j).iter().all(|x| x.is_finite()));
         if !finite {
             let residual = if residual.is_finite() { residual } else { f64::NAN };
             return Err(NewtonFailure { reason: FailureReason::NonFinite, iterations, residual });
         }
         if let Some(j) = jac {
-            *kept = Factorization::new(j, 1e-14);
+            *kept = Factorization::new(dim, &j, 1e-14);
         }
         Ok((r, residual))
     };
     let mut fresh = kept.is_none();
     let (mut r, mut residual) = evaluate(kept, z, fresh, iterations)?;
     jacobians += usize::from(fresh);
-    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), z.amax());
+    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), V::Dim::amax(z));
     let mut small_correction = false;
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);
@@ -298,8 +305,11 @@ fn chord<const N: usize>(
         if iterations >= options.max_iterations {
             return Err(NewtonFailure { reason: FailureReason::NotConverged, iterations, residual });
         }
-        let delta =
-            kept.as_ref().filter(|lu| lu.rank == N).map(|lu| lu.solve(&r)).filter(|d| d.iter().all(|x| x.is_finite()));
+        let delta = kept
+            .as_ref()
+            .filter(|lu| lu.is_regular())
+            .map(|lu| lu.solve(&r))
+            .filter(|d| V::Dim::entries(d).iter().all(|x| x.is_finite()));
         let Some(delta) = delta else {
             if fresh {
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
@@ -309,10 +319,10 @@ fn chord<const N: usize>(
             (fresh, jacobians) = (true, jacobians + 1);
             continue;
         };
-        let (previous_z, previous) = (*z, residual);
-        *z -= delta;
+        let (previous_z, previous) = (z.clone(), residual);
+        *z -= &delta;
         iterations += 1;
-        small_correction = delta.amax() <= options.tolerance * (1.0 + z.amax());
+        small_correction = V::Dim::amax(&delta) <= options.tolerance * (1.0 + V::Dim::amax(z));
         stale = !fresh;
         fresh = !options.reuse_jacobian;
         let trial = evaluate(kept, z, fresh, iterations);
@@ -333,6 +343,7 @@ fn chord<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{SMatrix, SVector};
 
     #[test]
     fn quadratic_convergence_on_a_2d_system() {

@@ -21,6 +21,7 @@
 
 use crate::ad::{self, PairFunction};
 use crate::diagnostics::{Row, Summary};
+use crate::dim::Fixed;
 use crate::integrator::OutputError;
 use crate::mechanics::legendre;
 use crate::{
@@ -55,7 +56,7 @@ pub(crate) fn mass<S: System<N>, const N: usize>(system: &S) -> f64 {
 #[inline(never)]
 fn reference_scale<S: System<N>, const N: usize>(system: &S) -> f64 {
     struct Lagrangian<'a, S>(&'a S);
-    impl<S: System<N>, const N: usize> PairFunction<N> for Lagrangian<'_, S> {
+    impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for Lagrangian<'_, S> {
         fn eval<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
             self.0.lagrangian(q, v)
         }
@@ -67,7 +68,7 @@ fn reference_scale<S: System<N>, const N: usize>(system: &S) -> f64 {
         if usable(velocities) {
             return velocities;
         }
-        let mixed = ad::mixed(&Lagrangian(system), &q, &v).dadb.amax();
+        let mixed = ad::mixed(Fixed, &Lagrangian(system), &q, &v).dadb.amax();
         if usable(mixed) {
             return mixed;
         }

@@ -9,6 +9,7 @@
 use nalgebra::SVector;
 
 use crate::ad::FirstDerivatives;
+use crate::dim::Fixed;
 use crate::{DiscreteLagrangian, System};
 
 /// How many pairs a verdict wants.
@@ -28,7 +29,7 @@ pub struct Sample<const N: usize> {
     /// The second configuration.
     pub q1: [f64; N],
     /// L_d(q0, q1), D1 L_d and D2 L_d.
-    pub derivatives: FirstDerivatives<N>,
+    pub derivatives: FirstDerivatives<Fixed<N>>,
 }
 
 impl<const N: usize> Sample<N> {

@@ -4,6 +4,7 @@
 //! and failure reporting; a scheme only says how to evaluate its residual and Jacobian, how the
 //! momenta advance, and how the solved unknowns move the configuration (reconstruction).
 
+use crate::dim::Fixed;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -48,7 +49,7 @@ pub(crate) struct StepEquations<const N: usize> {
 impl<const N: usize> StepEquations<N> {
     /// Residual and by-products from the generating function's derivatives `d` at the trial unknowns.
     #[inline]
-    pub fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<N>) -> Evaluation<N> {
+    pub fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<Fixed<N>>) -> Evaluation<N> {
         Evaluation {
             residual: SVector::from_fn(|i, _| d.da[i] + self.sign[i] * momenta[i]),
             discrete_energy: d.value,
@@ -159,7 +160,7 @@ impl<const N: usize> StepDerivatives<N> {
             refusal => refusal,
         };
         let compiled = CompiledPair::from_programs(&programs).and_then(|pair| {
-            let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
+            let dual = ad::mixed(Fixed, &Generating { scheme, base }, &[0.0; N], z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
@@ -203,7 +204,7 @@ impl<const N: usize> StepDerivatives<N> {
         match self {
             Self::Dual => true,
             Self::Compiled { pair, .. } => {
-                let dual = ad::mixed(&Generating { scheme, base }, &[0.0; N], z);
+                let dual = ad::mixed(Fixed, &Generating { scheme, base }, &[0.0; N], z);
                 let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
                 pair.check_against(base, z, (first, dual.dadb), 1e-9).is_ok()
             }
@@ -241,14 +242,15 @@ impl<const N: usize> StepDerivatives<N> {
         base: &[f64; N],
         z: &SVector<f64, N>,
         with_mixed: bool,
-    ) -> (FirstDerivatives<N>, Option<SMatrix<f64, N, N>>) {
+    ) -> (FirstDerivatives<Fixed<N>>, Option<SMatrix<f64, N, N>>) {
         let compiled = match self {
             Self::Compiled { pair, .. } => pair.first_or_mixed(base, &(*z).into(), with_mixed),
             Self::Dual => None,
         };
         // Where a guard of the trace fails (another branch of a comparison), dual numbers answer.
-        compiled
-            .unwrap_or_else(|| ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed))
+        compiled.unwrap_or_else(|| {
+            ad::first_or_mixed(Fixed, &Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed)
+        })
     }
 }
 
@@ -297,7 +299,7 @@ fn check_linear<const N: usize>(
     momenta: &[f64; N],
 ) -> Result<(), CompileError> {
     let solution = linear.solve(base, momenta);
-    let (dual, _) = ad::first_or_mixed(&Generating { scheme, base }, &[0.0; N], &solution.z, false);
+    let (dual, _) = ad::first_or_mixed(Fixed, &Generating { scheme, base }, &[0.0; N], &solution.z, false);
     let evaluation = equations.evaluate(momenta, &dual);
     let scale = momenta.iter().chain(dual.da.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
     let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;
@@ -320,7 +322,7 @@ struct Generating<'s, Sc, const N: usize> {
     base: &'s [f64; N],
 }
 
-impl<Sc: Scheme<N>, const N: usize> PairFunction<N> for Generating<'_, Sc, N> {
+impl<Sc: Scheme<N>, const N: usize> PairFunction<Fixed<N>> for Generating<'_, Sc, N> {
     #[inline]
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.scheme.generating(self.base, a, b)

@@ -1,15 +1,17 @@
 //! The dual numbers against num-dual's `partial_hessian` on functions that use every operation.
 
+use crate::dim::Fixed;
 use crate::Scalar;
 use nalgebra::SVector;
 use num_dual::{partial_hessian, HyperDualSVec64};
 
 use super::*;
+use crate::dim::Dynamic;
 
 /// Uses every arithmetic operator and elementary function on values where all are defined.
 struct Everything;
 
-impl PairFunction<3> for Everything {
+impl PairFunction<Fixed<3>> for Everything {
     fn eval<D: Scalar>(&self, a: &[D; 3], b: &[D; 3]) -> D {
         let (x, y, z) = (a[0], a[1], a[2]);
         let (u, v, w) = (b[0], b[1], b[2]);
@@ -32,7 +34,11 @@ impl PairFunction<3> for Everything {
     }
 }
 
-fn reference<F: PairFunction<N>, const N: usize>(f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<N> {
+fn reference<F: PairFunction<Fixed<N>>, const N: usize>(
+    f: &F,
+    a: &[f64; N],
+    b: &[f64; N],
+) -> MixedDerivatives<Fixed<N>> {
     let (value, da, db, dadb) = partial_hessian(
         |(x, y): (SVector<HyperDualSVec64<N, N>, N>, SVector<HyperDualSVec64<N, N>, N>)| f.eval(&x.into(), &y.into()),
         (&SVector::from(*a), &SVector::from(*b)),
@@ -44,7 +50,7 @@ fn close(x: f64, y: f64) -> bool {
     (x - y).abs() <= 1e-13 * (1.0 + x.abs().max(y.abs()))
 }
 
-fn assert_same<const N: usize>(got: &MixedDerivatives<N>, want: &MixedDerivatives<N>) {
+fn assert_same<const N: usize>(got: &MixedDerivatives<Fixed<N>>, want: &MixedDerivatives<Fixed<N>>) {
     assert!(close(got.value, want.value), "value {} vs {}", got.value, want.value);
     for i in 0..N {
         assert!(close(got.da[i], want.da[i]), "da[{i}] {} vs {}", got.da[i], want.da[i]);
@@ -67,8 +73,8 @@ const POINTS: [([f64; 3], [f64; 3]); 3] =
 fn mixed_and_first_agree_with_num_dual() {
     for (a, b) in POINTS {
         let want = reference(&Everything, &a, &b);
-        assert_same(&mixed(&Everything, &a, &b), &want);
-        let g = first(&Everything, &a, &b);
+        assert_same(&mixed(Fixed, &Everything, &a, &b), &want);
+        let g = first(Fixed, &Everything, &a, &b);
         assert_same(&MixedDerivatives { value: g.value, da: g.da, db: g.db, dadb: want.dadb }, &want);
     }
 }
@@ -76,15 +82,17 @@ fn mixed_and_first_agree_with_num_dual() {
 /// A chain of couplings between many arguments, so that every entry of the mixed block is nonzero.
 struct Coupled;
 
-impl<const N: usize> PairFunction<N> for Coupled {
-    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
+impl<Dm: Dim> PairFunction<Dm> for Coupled {
+    fn eval<D: Scalar>(&self, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D {
+        let (a, b) = (a.as_ref(), b.as_ref());
+        let n = a.len();
         let mut sa = D::from(0.0);
         let mut sb = D::from(0.0);
         let mut acc = D::from(0.0);
-        for i in 0..N {
+        for i in 0..n {
             sa += a[i] * (i as f64 + 1.0);
             sb += b[i] * (0.5 + i as f64 * 0.1);
-            acc += (a[i] - b[(i + 1) % N]).sin() * b[i];
+            acc += (a[i] - b[(i + 1) % n]).sin() * b[i];
         }
         acc + (sa * 0.1).sin() * (sb * 0.2).cos() + sa * sb * sb * 0.01
     }
@@ -101,6 +109,38 @@ fn chunked_equals_single_pass() {
     assert_same(&chunked, &single);
     assert_same(&single, &reference(&Coupled, &a, &b));
     assert!(single.dadb.iter().all(|x| *x != 0.0));
+}
+
+fn same_bits(x: &[f64], y: &[f64]) -> bool {
+    x.len() == y.len() && x.iter().zip(y).all(|(a, b)| a.to_bits() == b.to_bits())
+}
+
+fn blocks_equal_fixed<const N: usize>() {
+    let a: [f64; N] = std::array::from_fn(|i| 0.1 * i as f64 - 0.4);
+    let b: [f64; N] = std::array::from_fn(|i| 0.3 - 0.05 * i as f64);
+    let fixed = mixed(Fixed, &Coupled, &a, &b);
+    let dynamic = mixed(Dynamic(N), &Coupled, &a.to_vec(), &b.to_vec());
+    assert_eq!(fixed.value.to_bits(), dynamic.value.to_bits(), "n = {N}");
+    assert!(same_bits(fixed.da.as_slice(), dynamic.da.as_slice()), "n = {N}: ∂f/∂a");
+    assert!(same_bits(fixed.db.as_slice(), dynamic.db.as_slice()), "n = {N}: ∂f/∂b");
+    assert!(same_bits(fixed.dadb.as_slice(), dynamic.dadb.as_slice()), "n = {N}: ∂²f/∂a∂b");
+    let (fixed, dynamic) = (first(Fixed, &Coupled, &a, &b), first(Dynamic(N), &Coupled, &a.to_vec(), &b.to_vec()));
+    assert_eq!(fixed.value.to_bits(), dynamic.value.to_bits(), "n = {N}");
+    assert!(same_bits(fixed.da.as_slice(), dynamic.da.as_slice()), "n = {N}: first ∂f/∂a");
+    assert!(same_bits(fixed.db.as_slice(), dynamic.db.as_slice()), "n = {N}: first ∂f/∂b");
+}
+
+#[test]
+fn blocks_in_a_dynamic_dimension_equal_a_fixed_one_bit_for_bit() {
+    // One block, a single pass of the fixed dimension; several blocks against column chunks, with a
+    // partial last block.
+    blocks_equal_fixed::<1>();
+    blocks_equal_fixed::<BLOCK>();
+    blocks_equal_fixed::<11>();
+    blocks_equal_fixed::<21>();
+    let a: [f64; 21] = std::array::from_fn(|i| 0.1 * i as f64 - 0.4);
+    let b: [f64; 21] = std::array::from_fn(|i| 0.3 - 0.05 * i as f64);
+    assert_same(&mixed(Fixed, &Coupled, &a, &b), &reference(&Coupled, &a, &b));
 }
 
 #[test]

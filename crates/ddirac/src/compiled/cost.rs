@@ -39,7 +39,7 @@
 
 use super::{PairPrograms, Program};
 use crate::ad::{CHUNK, CROSSOVER};
-use crate::newton::{KeptJacobian, ACROSS_SOLVES};
+use crate::newton::{dual_relative_cost, ACROSS_SOLVES};
 
 /// Seconds of native code generation per program (the JIT module and the function around the code).
 #[cfg(feature = "jit")]
@@ -134,7 +134,7 @@ impl CompileCost {
         };
         let dual = |flops: f64| *operations as f64 * (DUAL_PER_OPERATION + DUAL_PER_FLOP * flops);
         let native = |p: &Program| NATIVE_PER_INSTRUCTION * p.instructions.len() as f64;
-        let (dual_step, native_step) = if KeptJacobian::<N>::dual_relative_cost() >= ACROSS_SOLVES {
+        let (dual_step, native_step) = if dual_relative_cost(N) >= ACROSS_SOLVES {
             (RESIDUALS_KEPT * dual(residual_flops), RESIDUALS_KEPT * native(first))
         } else {
             (dual(jacobian_flops) + 2.0 * dual(residual_flops), native(mixed) + 2.0 * native(first))

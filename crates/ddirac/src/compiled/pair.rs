@@ -16,6 +16,7 @@ use super::executable::Executable;
 use super::JitError;
 use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
+use crate::dim::Fixed;
 use crate::RuntimeInput;
 
 /// Why derivatives could not be compiled.
@@ -148,7 +149,7 @@ impl<const N: usize> CompiledPair<N> {
         base: &[f64; N],
         b: &[f64; N],
         with_mixed: bool,
-    ) -> Option<(FirstDerivatives<N>, Option<SMatrix<f64, N, N>>)> {
+    ) -> Option<(FirstDerivatives<Fixed<N>>, Option<SMatrix<f64, N, N>>)> {
         let mut buffers = self.buffers.borrow_mut();
         let Buffers { inputs, outputs } = &mut *buffers;
         inputs[..N].copy_from_slice(base);
@@ -175,7 +176,7 @@ impl<const N: usize> CompiledPair<N> {
         &self,
         base: &[f64; N],
         b: &[f64; N],
-        dual: (FirstDerivatives<N>, SMatrix<f64, N, N>),
+        dual: (FirstDerivatives<Fixed<N>>, SMatrix<f64, N, N>),
         tolerance: f64,
     ) -> Result<(), CompileError> {
         let Some((c, cm)) = self.first_or_mixed(base, b, true) else {

@@ -1,6 +1,7 @@
 //! The compiled derivatives against the dual numbers of [`crate::ad`], which compute the same
 //! numbers by a different method: both run the same generic code, at random points.
 
+use crate::dim::Fixed;
 use crate::Scalar;
 use std::cell::Cell;
 
@@ -24,7 +25,7 @@ struct AtBase<'f, G, const N: usize> {
     base: [f64; N],
 }
 
-impl<G: Generic<N>, const N: usize> PairFunction<N> for AtBase<'_, G, N> {
+impl<G: Generic<N>, const N: usize> PairFunction<Fixed<N>> for AtBase<'_, G, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.f.eval(&self.base.map(D::from), a, b)
     }
@@ -72,7 +73,7 @@ fn compare<G: Generic<N>, const N: usize>(f: &G, base: [f64; N], b: [f64; N], ra
         let (base, b) = (random.point(&base, radius), random.point(&b, radius));
         let inputs: Vec<f64> = base.iter().chain(&b).copied().collect();
         let (first, mixed) = (run(&programs.first, &inputs), run(&programs.mixed, &inputs));
-        let dual = ad::mixed(&AtBase { f, base }, &[0.0; N], &b);
+        let dual = ad::mixed(Fixed, &AtBase { f, base }, &[0.0; N], &b);
         assert_eq!(first[..], mixed[..1 + 2 * N], "both programs compute f, ∂f/∂a, ∂f/∂b alike");
         assert_block_close("value", &first[..1], &[dual.value], 1e-13);
         assert_block_close("∂f/∂a", &first[1..1 + N], dual.da.as_slice(), 1e-12);

@@ -12,6 +12,7 @@
 //! velocity (δ1 − δ0)/h is formed from small offsets and never loses digits to a large base value
 //! (paper §6, retraction-compatible charts).
 
+use crate::dim::Fixed;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -166,7 +167,7 @@ impl<S> DiscreteLagrangian<S> {
     where
         S: System<N>,
     {
-        let d = ad::mixed(&Local { ld: self, base }, &(*d0).into(), &(*d1).into());
+        let d = ad::mixed(Fixed, &Local { ld: self, base }, &(*d0).into(), &(*d1).into());
         Derivatives { value: d.value, d1: d.da, d2: d.db, d1d2: d.dadb }
     }
 
@@ -176,11 +177,11 @@ impl<S> DiscreteLagrangian<S> {
         base: &[f64; N],
         d0: &SVector<f64, N>,
         d1: &SVector<f64, N>,
-    ) -> ad::FirstDerivatives<N>
+    ) -> ad::FirstDerivatives<Fixed<N>>
     where
         S: System<N>,
     {
-        ad::first(&Local { ld: self, base }, &(*d0).into(), &(*d1).into())
+        ad::first(Fixed, &Local { ld: self, base }, &(*d0).into(), &(*d1).into())
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).
@@ -199,7 +200,7 @@ struct Local<'l, S, const N: usize> {
     base: &'l [f64; N],
 }
 
-impl<S: System<N>, const N: usize> PairFunction<N> for Local<'_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for Local<'_, S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.ld.eval_local(self.base, a, b)
     }

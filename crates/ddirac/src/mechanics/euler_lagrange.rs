@@ -14,6 +14,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ad::{self, PairFunction};
 use crate::compiled::{CompiledPair, Traced};
+use crate::dim::Fixed;
 use crate::{Scalar, System};
 
 /// The Euler–Lagrange vector field of a system, with its derivatives compiled or by dual numbers.
@@ -28,7 +29,7 @@ struct PositionVelocity<'a, S, const N: usize> {
     q: [f64; N],
 }
 
-impl<S: System<N>, const N: usize> PairFunction<N> for PositionVelocity<'_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for PositionVelocity<'_, S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         self.system.lagrangian(&std::array::from_fn(|i| a[i] + self.q[i]), b)
     }
@@ -40,7 +41,7 @@ struct VelocityVelocity<'a, S, const N: usize> {
     q: [f64; N],
 }
 
-impl<S: System<N>, const N: usize> PairFunction<N> for VelocityVelocity<'_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for VelocityVelocity<'_, S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         let q = self.q.map(D::from);
         self.system.lagrangian(&q, &std::array::from_fn(|i| b[i] + a[i]))
@@ -88,13 +89,13 @@ impl<'a, S: System<N>, const N: usize> EulerLagrange<'a, S, N> {
         let (dl_dq, dq_dv, mass): (SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>) = match compiled {
             Some(parts) => parts,
             None => {
-                let pv = ad::mixed(&PositionVelocity { system: self.system, q: *q }, &[0.0; N], v);
-                let vv = ad::mixed(&VelocityVelocity { system: self.system, q: *q }, &[0.0; N], v);
+                let pv = ad::mixed(Fixed, &PositionVelocity { system: self.system, q: *q }, &[0.0; N], v);
+                let vv = ad::mixed(Fixed, &VelocityVelocity { system: self.system, q: *q }, &[0.0; N], v);
                 (pv.da, pv.dadb, vv.dadb)
             }
         };
         let rhs = dl_dq - dq_dv.transpose() * SVector::from(*v);
-        let (solution, rank) = crate::linalg::solve(mass, rhs, 1e-14)?;
+        let (solution, rank) = crate::linalg::solve(Fixed::<N>, &mass, &rhs, 1e-14)?;
         (rank == N).then(|| solution.into())
     }
 

@@ -4,6 +4,7 @@
 //! not determined by the momentum; [`velocity`] then returns one velocity compatible with it, and H
 //! does not depend on the choice as long as p lies on the primary constraint p = ∂L/∂v.
 
+use crate::dim::Fixed;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -19,7 +20,7 @@ struct AtVelocity<'a, S, const N: usize> {
     v: &'a [f64; N],
 }
 
-impl<S: System<N>, const N: usize> PairFunction<N> for AtVelocity<'_, S, N> {
+impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for AtVelocity<'_, S, N> {
     fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
         let q = self.q.map(D::from);
         let mut v = *a;
@@ -38,14 +39,14 @@ impl<S: System<N>, const N: usize> PairFunction<N> for AtVelocity<'_, S, N> {
 /// assert_eq!(p, [1.0, 0.0, 1.0, 1.0]);
 /// ```
 pub fn momentum<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> [f64; N] {
-    ad::first(&AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]).da.into()
+    ad::first(Fixed, &AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]).da.into()
 }
 
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
 /// Lagrangian is linear in the velocities.
 pub fn rank<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> usize {
     let hess = velocity_hessian(system, q, v).2;
-    crate::linalg::solve(hess, SVector::zeros(), 1e-10).map_or(0, |(_, rank)| rank)
+    crate::linalg::solve(Fixed::<N>, &hess, &SVector::zeros(), 1e-10).map_or(0, |(_, rank)| rank)
 }
 
 /// Whether the Legendre transform is regular at (q, v): ∂²L/∂v² has full rank.
@@ -75,7 +76,7 @@ pub fn is_regular<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f
 /// ```
 pub fn conditioning<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> (f64, usize) {
     let hess = velocity_hessian(system, q, v).2;
-    Factorization::new(hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
+    Factorization::new(Fixed::<N>, &hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
 }
 
 pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
@@ -83,7 +84,7 @@ pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
     q: &[f64; N],
     v: &[f64; N],
 ) -> (f64, SVector<f64, N>, SMatrix<f64, N, N>) {
-    let d = ad::mixed(&AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]);
+    let d = ad::mixed(Fixed, &AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]);
     (d.value, d.da, d.dadb)
 }
 
@@ -104,14 +105,14 @@ pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64
     let mut v = SVector::<f64, N>::zeros();
     let mut previous = v;
     let mut mismatch = f64::INFINITY;
-    let mut lu: Option<Factorization<N>> = None;
+    let mut lu: Option<Factorization<Fixed<N>>> = None;
     // Whether ∂²L/∂v² was evaluated at this iterate, and whether the correction that led to it used
     // one evaluated at the iterate it started from.
     let (mut fresh, mut fresh_correction) = (false, false);
     for _ in 0..40 {
         let grad = if lu.is_none() {
             let (_, grad, hess) = velocity_hessian(system, q, &v.into());
-            (lu, fresh) = (Factorization::new(hess, 1e-10), true);
+            (lu, fresh) = (Factorization::new(Fixed, &hess, 1e-10), true);
             grad
         } else {
             SVector::from(momentum(system, q, &v.into()))

@@ -21,6 +21,7 @@ use std::time::Instant;
 
 use crate::chart::Configuration;
 use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning};
+use crate::dim::Fixed;
 use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
 use crate::mechanics::legendre;
@@ -93,7 +94,7 @@ pub(crate) struct ChartStepper<S, const N: usize> {
     schemes: Schemes<S, N>,
     derivative_path: DerivativePath,
     /// The Jacobian memory of a first step: none kept, with the relative cost of the derivatives.
-    fresh_kept: newton::KeptJacobian<N>,
+    fresh_kept: newton::KeptJacobian<Fixed<N>>,
     /// The warnings of the check before the first step, with which every record starts.
     check_warnings: Vec<Warning>,
     started: Instant,
@@ -177,10 +178,10 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
             return Err(Error::Undetermined { rank, coordinates: N });
         }
         let fresh_kept = match derivative_path {
-            DerivativePath::Compiled { residual, jacobian, .. } => newton::KeptJacobian::with_relative_cost(
-                newton::KeptJacobian::<N>::compiled_relative_cost(residual, jacobian),
-            ),
-            DerivativePath::Dual { .. } => newton::KeptJacobian::new(),
+            DerivativePath::Compiled { residual, jacobian, .. } => {
+                newton::KeptJacobian::with_relative_cost(newton::compiled_relative_cost(N, residual, jacobian))
+            }
+            DerivativePath::Dual { .. } => newton::KeptJacobian::new(Fixed),
         };
         let progress = equipped!(&schemes, st => Progress::cold(
             &st.first().scheme, &st.gammas, &fresh_kept, start, setup.dq0, kinds, &setup.split, method, warnings

@@ -8,6 +8,7 @@ use super::stages::{Stages, MAX_SUBDIVISION};
 use super::{chart_watch, Context, Equipped, FirstStep, OwnedRow, StepReport};
 use crate::chart::Configuration;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
+use crate::dim::Fixed;
 use crate::energy_jump::{Jump, JumpAction, Monitor};
 use crate::mechanics::legendre;
 use crate::scheme::Scheme;
@@ -41,7 +42,7 @@ pub const IMPLAUSIBLE_ENERGY_CHANGE: f64 = 1e-2;
 #[derive(Debug, Clone)]
 pub(super) struct StageMemory<const N: usize> {
     pub(super) predictor: Predictor<N>,
-    pub(super) kept: newton::KeptJacobian<N>,
+    pub(super) kept: newton::KeptJacobian<Fixed<N>>,
 }
 
 /// What the summary reports: statistics since the record started, and the warnings.
@@ -146,7 +147,7 @@ impl<const N: usize> Progress<N> {
     pub(super) fn cold(
         scheme: &impl Scheme<N>,
         gammas: &[f64],
-        kept: &newton::KeptJacobian<N>,
+        kept: &newton::KeptJacobian<Fixed<N>>,
         start: (usize, [f64; N], [f64; N]),
         dq: [f64; N],
         kinds: [CoordinateKind; N],
@@ -254,7 +255,7 @@ impl<const N: usize> Progress<N> {
                     let dq = predicted.map(|x| g * x);
                     StageMemory {
                         predictor: Predictor::new(sub.distinct[d].scheme.unknowns(&dq)),
-                        kept: newton::KeptJacobian::new(),
+                        kept: newton::KeptJacobian::new(Fixed),
                     }
                 })
                 .collect();
@@ -561,7 +562,7 @@ fn solve_step<Sc: Scheme<N>, const N: usize>(
     base: &[f64; N],
     momenta: &[f64; N],
     predictor: &Predictor<N>,
-    kept: &mut newton::KeptJacobian<N>,
+    kept: &mut newton::KeptJacobian<Fixed<N>>,
     options: &newton::NewtonOptions,
 ) -> Result<Solved<N>, newton::NewtonFailure> {
     let Equipped { scheme, equations, derivatives, .. } = e;

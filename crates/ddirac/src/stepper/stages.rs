@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use super::{Equipped, FirstStep};
 use crate::diagnostics::DerivativePath;
+use crate::dim::Fixed;
 use crate::scheme::Scheme;
 use crate::{Differentiation, Error, Input, Method, Rule};
 
@@ -120,7 +121,7 @@ impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
         let z = e.scheme.unknowns(&dq);
         match e.derivatives.first_or_mixed(&e.scheme, &base, &z, true) {
             (_, Some(jacobian)) if jacobian.iter().all(|x| x.is_finite()) => {
-                crate::linalg::Factorization::new(jacobian, RANK_TOLERANCE).map_or(0, |lu| lu.rank)
+                crate::linalg::Factorization::new(Fixed::<N>, &jacobian, RANK_TOLERANCE).map_or(0, |lu| lu.rank)
             }
             _ => N,
         }

@@ -5,6 +5,7 @@
 
 use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, Traced};
+use ddirac::dim::Fixed;
 use ddirac::expression::{parse, CompiledExpression, ExprKind, ExpressionSpec, ExpressionSystem, Scope, SyntaxError};
 use ddirac::{solve, Coordinate, Differentiation, InitialMomentum, Method, OutputOptions, Problem};
 
@@ -18,7 +19,7 @@ fn flat_sum(terms: usize) -> String {
 /// L(x, ẋ) as a function of the two blocks (x) and (ẋ).
 struct Lagrangian<'p>(&'p CompiledExpression);
 
-impl PairFunction<1> for Lagrangian<'_> {
+impl PairFunction<Fixed<1>> for Lagrangian<'_> {
     fn eval<D: ddirac::Scalar>(&self, a: &[D; 1], b: &[D; 1]) -> D {
         self.0.eval(&[a[0], b[0]])
     }
@@ -39,7 +40,7 @@ fn a_sum_of_a_hundred_thousand_terms_parses_compiles_and_differentiates() {
     let expected = v * v + TERMS as f64 * x;
     assert!((program.eval(&[x, v]) - expected).abs() <= 1e-9 * expected);
     // By dual numbers: ∂L/∂x = n, ∂L/∂ẋ = 2ẋ.
-    let d = ad::first(&Lagrangian(&program), &[x], &[v]);
+    let d = ad::first(Fixed, &Lagrangian(&program), &[x], &[v]);
     assert!((d.value - expected).abs() <= 1e-9 * expected);
     assert!((d.da[0] - TERMS as f64).abs() <= 1e-9 * TERMS as f64);
     assert!((d.db[0] - 2.0 * v).abs() <= 1e-12);

@@ -22,6 +22,7 @@ mod compiled;
 mod composition;
 mod conservation;
 mod convergence;
+mod dimensions;
 mod errors;
 mod expression;
 mod expression_round_trips;

@@ -5,6 +5,7 @@
 use crate::common;
 
 use common::{max_scaled_row_diff, run};
+use ddirac::dim::Fixed;
 use ddirac::newton::KeptJacobian;
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler, PendulumChain};
 use ddirac::{Differentiation, InitialMomentum, Method, NewtonOptions, Problem, Rule, Solution, System, Variant};
@@ -46,7 +47,7 @@ fn check<S: System<N>, const N: usize>(name: &str, system: &S, problem: &Problem
         (jn - (classical_iterations + 1.0)).abs() < 1e-12,
         "{name}: {jn} Jacobians for {classical_iterations} corrections"
     );
-    if KeptJacobian::<N>::new().across_solves() {
+    if KeptJacobian::new(Fixed::<N>).across_solves() {
         assert!(jc < 0.5, "{name}: {jc} Jacobians per step although they are kept across steps");
     } else {
         assert!((1.0..1.1).contains(&jc), "{name}: {jc} Jacobians per step, expected one (rarely two)");
@@ -103,7 +104,7 @@ fn kepler_and_heavy_top_chord_equal_classical() {
 #[test]
 fn a_long_chain_keeps_its_jacobian_across_steps() {
     const N: usize = 16;
-    assert!(KeptJacobian::<N>::new().across_solves());
+    assert!(KeptJacobian::new(Fixed::<N>).across_solves());
     // Iterates of a Jacobian kept across steps converge linearly: each step lands within about
     // 10⁻¹³ of classical Newton's, and 200 steps add these up (measured 6e-11).
     let method = Method { rule: Rule::Midpoint, ..Method::default() };
