@@ -111,8 +111,8 @@ pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 pub(crate) enum StepDerivatives<const N: usize> {
     /// Compiled derivatives, and the compiled closed-form step when the step equations are linear.
     Compiled {
-        pair: Box<CompiledPair<N>>,
-        linear: Option<Box<LinearStep<N>>>,
+        pair: Box<CompiledPair<Fixed<N>>>,
+        linear: Option<Box<LinearStep<Fixed<N>>>>,
     },
     Dual,
 }
@@ -143,7 +143,7 @@ impl<const N: usize> StepDerivatives<N> {
             )));
         }
         let generating = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| scheme.generating(base, a, b);
-        let programs = match (pair_programs_with_runtime_inputs(generating, base, z), choice) {
+        let programs = match (pair_programs_with_runtime_inputs(Fixed, generating, base, z), choice) {
             (Ok(programs), _) => programs,
             (Err(e), Differentiation::Auto) => return dual_numbers(Some(e.to_string())),
             (Err(e), _) => return Err(e.into()),
@@ -159,7 +159,7 @@ impl<const N: usize> StepDerivatives<N> {
             Some(reason) if cfg!(feature = "jit") => return dual_numbers(Some(reason)),
             refusal => refusal,
         };
-        let compiled = CompiledPair::from_programs(&programs).and_then(|pair| {
+        let compiled = CompiledPair::from_programs(Fixed, &programs).and_then(|pair| {
             let dual = ad::mixed(Fixed, &Generating { scheme, base }, &[0.0; N], z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
@@ -226,7 +226,7 @@ impl<const N: usize> StepDerivatives<N> {
 
     /// The compiled closed-form step, if the run has one.
     #[inline]
-    pub fn linear_step(&self) -> Option<&LinearStep<N>> {
+    pub fn linear_step(&self) -> Option<&LinearStep<Fixed<N>>> {
         match self {
             Self::Compiled { linear, .. } => linear.as_deref(),
             Self::Dual => None,
@@ -265,7 +265,7 @@ fn closed_form<const N: usize, F>(
     base: &[f64; N],
     z: &[f64; N],
     momenta: &[f64; N],
-) -> Result<Option<LinearStep<N>>, CompileError>
+) -> Result<Option<LinearStep<Fixed<N>>>, CompileError>
 where
     F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
 {
@@ -277,7 +277,7 @@ where
     if compiled::known_not_affine(&key) {
         return Ok(None);
     }
-    match LinearStep::new(generating, base, z, momenta, sign, advances, eliminable)? {
+    match LinearStep::new(Fixed, generating, base, z, momenta, sign, advances, eliminable)? {
         Ok(linear) => Ok(Some(linear)),
         Err(refusal) => {
             if refusal == Refusal::NotAffine {
@@ -294,7 +294,7 @@ where
 fn check_linear<const N: usize>(
     scheme: &impl Scheme<N>,
     equations: &StepEquations<N>,
-    linear: &LinearStep<N>,
+    linear: &LinearStep<Fixed<N>>,
     base: &[f64; N],
     momenta: &[f64; N],
 ) -> Result<(), CompileError> {

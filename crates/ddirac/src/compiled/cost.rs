@@ -84,13 +84,14 @@ const RESIDUALS_KEPT: f64 = 8.0;
 ///
 /// ```
 /// use ddirac::compiled::{pair_programs, CompileCost, Traced};
+/// use ddirac::dim::Fixed;
 /// use num_dual::DualNum;
 /// // A pendulum's L_d: a few dozen instructions, compiled in about a millisecond.
 /// let ld = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| {
 ///     let (q0, q1) = (base[0] + a[0], base[0] + b[0]);
 ///     (q1 - q0).powi(2) * 50.0 + ((q0 + q1) * 0.5).cos() * 0.1
 /// };
-/// let cost = CompileCost::estimate::<1>(&pair_programs(ld, &[0.3], &[0.01]).unwrap());
+/// let cost = CompileCost::estimate::<1>(&pair_programs(Fixed, ld, &[0.3], &[0.01]).unwrap());
 /// assert!(cost.compile < 2e-3);
 /// if cfg!(feature = "jit") {
 ///     assert!(cost.pays(5000));

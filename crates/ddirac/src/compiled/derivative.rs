@@ -34,6 +34,7 @@
 use super::graph::{Graph, Node};
 use super::program::{Binary, Instruction, Program, Unary};
 use super::trace::{self, NotCompiled, Traced};
+use crate::dim::Dim;
 use crate::RuntimeInput;
 
 /// The two programs of a pair function: inputs (base, b), outputs at a = 0 as in the module
@@ -73,16 +74,22 @@ impl PairPrograms {
 /// use ddirac::compiled::pair_programs;
 /// use num_dual::DualNum;
 /// // f = (base + a)² · eᵇ
-/// let programs = pair_programs(|base, a, b| (base[0] + a[0]).powi(2) * b[0].exp(), &[1.0], &[0.0]).unwrap();
+/// use ddirac::dim::Fixed;
+/// let programs = pair_programs(Fixed, |base, a, b| (base[0] + a[0]).powi(2) * b[0].exp(), &[1.0], &[0.0]).unwrap();
 /// let mut out = [0.0; 4];
 /// programs.mixed.eval(&[3.0, 0.0], &mut Vec::new(), &mut out);
 /// assert_eq!(out, [9.0, 6.0, 9.0, 6.0]); // f, ∂f/∂a, ∂f/∂b, ∂²f/∂a∂b
 /// ```
-pub fn pair_programs<const N: usize, F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<PairPrograms, NotCompiled>
+pub fn pair_programs<Dm: Dim, F>(
+    dim: Dm,
+    f: F,
+    base: &Dm::Array<f64>,
+    b: &Dm::Array<f64>,
+) -> Result<PairPrograms, NotCompiled>
 where
-    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
 {
-    programs(pair_graph(f, base, b, false)?)
+    programs(pair_graph(dim, f, base, b, false)?)
 }
 
 /// [`pair_programs`] with the runtime inputs f asks for (the step size, a text Lagrangian's
@@ -91,27 +98,28 @@ where
 ///
 /// ```
 /// use ddirac::compiled::pair_programs_with_runtime_inputs;
-/// use ddirac::{RuntimeInput, Scalar};
+/// use ddirac::{dim::Fixed, RuntimeInput, Scalar};
 /// // f = h · b², with h a runtime input.
 /// let f = |_: &[_; 1], _: &[_; 1], b: &[ddirac::compiled::Traced; 1]| {
 ///     let h = ddirac::compiled::Traced::runtime_input(RuntimeInput::Step, 0.1).unwrap();
 ///     b[0] * b[0] * h
 /// };
-/// let programs = pair_programs_with_runtime_inputs(f, &[0.0], &[3.0]).unwrap();
+/// let programs = pair_programs_with_runtime_inputs(Fixed, f, &[0.0], &[3.0]).unwrap();
 /// assert_eq!(programs.runtime, vec![(RuntimeInput::Step, 0.1)]);
 /// let mut out = [0.0; 3];
 /// programs.first.eval(&[0.0, 3.0, 0.5], &mut Vec::new(), &mut out); // h = 0.5 now
 /// assert_eq!(out, [4.5, 0.0, 3.0]);
 /// ```
-pub fn pair_programs_with_runtime_inputs<const N: usize, F>(
+pub fn pair_programs_with_runtime_inputs<Dm: Dim, F>(
+    dim: Dm,
     f: F,
-    base: &[f64; N],
-    b: &[f64; N],
+    base: &Dm::Array<f64>,
+    b: &Dm::Array<f64>,
 ) -> Result<PairPrograms, NotCompiled>
 where
-    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
 {
-    programs(pair_graph(f, base, b, true)?)
+    programs(pair_graph(dim, f, base, b, true)?)
 }
 
 /// The two programs of a differentiated pair graph.
@@ -151,35 +159,38 @@ pub(super) struct PairGraph {
 
 /// Traces f(base, a, b) at (base, 0, b) and differentiates it once: steps 1 to 3 above. With
 /// `runtime`, the runtime inputs f asks for are inputs after (base, b).
-pub(super) fn pair_graph<const N: usize, F>(
+pub(super) fn pair_graph<Dm: Dim, F>(
+    dim: Dm,
     f: F,
-    base: &[f64; N],
-    b: &[f64; N],
+    base: &Dm::Array<f64>,
+    b: &Dm::Array<f64>,
     runtime: bool,
 ) -> Result<PairGraph, NotCompiled>
 where
-    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
 {
-    let point: Vec<f64> = base.iter().chain(&[0.0; N]).chain(b).copied().collect();
+    let n = dim.n();
+    let zeros = vec![0.0; n];
+    let point: Vec<f64> = base.as_ref().iter().chain(&zeros).chain(b.as_ref()).copied().collect();
     let trace::Recorded { mut graph, result: y, guards, runtime } = trace::trace(&point, runtime, |x| {
-        let block = |k: usize| -> [Traced; N] { std::array::from_fn(|i| x[k * N + i]) };
+        let block = |k: usize| dim.array(|i| x[k * n + i]);
         f(&block(0), &block(1), &block(2))
     })?;
     let operations = graph.operations(y);
     // The trace's inputs are its first nodes: base, a, b.
-    let wrt: Vec<Node> = (N..3 * N).map(|k| k as Node).collect();
+    let wrt: Vec<Node> = (n..3 * n).map(|k| k as Node).collect();
     let mut roots = vec![y];
     roots.extend(gradient(&mut graph, y, &wrt));
     roots.extend(guards.iter().map(|g| g.node));
-    let inputs = 3 * N + runtime.len();
-    let a_is_zero: Vec<Option<f64>> = (0..inputs).map(|k| (N..2 * N).contains(&k).then_some(0.0)).collect();
+    let inputs = 3 * n + runtime.len();
+    let a_is_zero: Vec<Option<f64>> = (0..inputs).map(|k| (n..2 * n).contains(&k).then_some(0.0)).collect();
     let (graph, roots) = graph.substitute(&roots, &a_is_zero);
-    let guards = guards.iter().zip(&roots[1 + 2 * N..]).map(|(g, &node)| (node, g.allowed)).collect();
+    let guards = guards.iter().zip(&roots[1 + 2 * n..]).map(|(g, &node)| (node, g.allowed)).collect();
     Ok(PairGraph {
         graph,
         value: roots[0],
-        da: roots[1..=N].to_vec(),
-        db: roots[1 + N..1 + 2 * N].to_vec(),
+        da: roots[1..=n].to_vec(),
+        db: roots[1 + n..1 + 2 * n].to_vec(),
         operations,
         guards,
         runtime,

@@ -35,7 +35,9 @@ use super::derivative::{directional, pair_graph, PairGraph};
 use super::executable::Executable;
 use super::graph::{Graph, Node};
 use super::{CompileError, Instruction, Program, Traced};
+use crate::dim::{Dim, Fixed};
 use rustc_hash::FxHashMap;
+use std::cell::RefCell;
 
 /// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
 /// constant (see [`constant_in`]); the residual test of every step guards the rest.
@@ -44,81 +46,92 @@ const CONSTANT_TOLERANCE: f64 = 1e-11;
 /// A pivot below this fraction of the largest entry of its matrix at the first step counts as zero.
 const PIVOT_TOLERANCE: f64 = 1e-14;
 
-/// The compiled closed-form step of linear step equations, for N coordinates.
-pub struct LinearStep<const N: usize> {
+/// The compiled closed-form step of linear step equations, for n coordinates.
+pub struct LinearStep<Dm: Dim> {
+    dim: Dm,
     program: std::sync::Arc<Executable>,
     /// Instructions of the step program.
     pub instructions: usize,
+    /// The program's inputs (base, m) and outputs (z, f, r, m'), kept between steps.
+    buffers: RefCell<(Vec<f64>, Vec<f64>)>,
 }
 
 /// What [`LinearStep::solve`] returns: the unknowns and what the step needs at them.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LinearSolution<const N: usize> {
+#[derive(Debug, Clone)]
+pub struct LinearSolution<Dm: Dim> {
     /// The unknowns z (shape increments and γ).
-    pub z: [f64; N],
+    pub z: Dm::Array<f64>,
     /// f at (base, 0, z): the discrete energy.
     pub value: f64,
     /// The residual r(z) of the full step equations.
-    pub residual: [f64; N],
+    pub residual: Dm::Array<f64>,
     /// The momenta of the next step: ∂f/∂b at (base, 0, z) where they advance, m elsewhere.
-    pub momenta_next: [f64; N],
+    pub momenta_next: Dm::Array<f64>,
 }
 
-impl<const N: usize> LinearSolution<N> {
+impl<const N: usize> Copy for LinearSolution<Fixed<N>> {}
+
+impl<Dm: Dim> LinearSolution<Dm> {
     /// ‖r(z)‖∞ if everything is finite and it is at most `threshold` (Newton's residual test).
     pub fn solves(&self, threshold: f64) -> Option<f64> {
-        let finite = self.z.iter().chain(&self.momenta_next).all(|v| v.is_finite()) && self.value.is_finite();
-        let residual = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+        let finite =
+            self.z.as_ref().iter().chain(self.momenta_next.as_ref()).all(|v| v.is_finite()) && self.value.is_finite();
+        let residual = self.residual.as_ref().iter().fold(0.0f64, |m, r| m.max(r.abs()));
         (finite && residual <= threshold).then_some(residual)
     }
 }
 
-impl<const N: usize> std::fmt::Debug for LinearStep<N> {
+impl<Dm: Dim> std::fmt::Debug for LinearStep<Dm> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("LinearStep").field("instructions", &self.instructions).finish()
     }
 }
 
-impl<const N: usize> LinearStep<N> {
+impl<Dm: Dim> LinearStep<Dm> {
     /// Traces the generating function `f` at (`base`, 0, `z`) with momenta `momenta` and compiles its
     /// closed-form step, for residual signs `sign`, advancing momenta `advances` and group unknowns
     /// `eliminable` (see the module
     /// documentation). [`Refusal::NotAffine`] when the equations are not linear in the unknowns
     /// (after eliminating γ), [`Refusal::AtThisPoint`] when a pivot or an output is zero or not
     /// finite at this first step (or the trace has guards).
+    #[allow(clippy::too_many_arguments)]
     pub fn new<F>(
+        dim: Dm,
         f: F,
-        base: &[f64; N],
-        z: &[f64; N],
-        momenta: &[f64; N],
-        sign: &[f64; N],
-        advances: &[bool; N],
-        eliminable: &[bool; N],
+        base: &Dm::Array<f64>,
+        z: &Dm::Array<f64>,
+        momenta: &[f64],
+        sign: &[f64],
+        advances: &[bool],
+        eliminable: &[bool],
     ) -> Result<Result<Self, Refusal>, CompileError>
     where
-        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+        F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
     {
-        let program = match step_program(pair_graph(f, base, z, false)?, momenta, sign, advances, eliminable) {
+        let program = match step_program(pair_graph(dim, f, base, z, false)?, momenta, sign, advances, eliminable) {
             Ok(program) => program,
             Err(refusal) => return Ok(Err(refusal)),
         };
-        let instructions = program.instructions.len();
-        Ok(Ok(Self { program: super::cache::shared(&program)?, instructions }))
+        let (instructions, n) = (program.instructions.len(), dim.n());
+        let buffers = RefCell::new((vec![0.0; 2 * n], vec![0.0; 1 + 3 * n]));
+        Ok(Ok(Self { dim, program: super::cache::shared(&program)?, instructions, buffers }))
     }
 
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are
     /// constants of the compiled step (a scheme conserves them): only their values given to
     /// [`LinearStep::new`] are used.
-    pub fn solve(&self, base: &[f64; N], momenta: &[f64; N]) -> LinearSolution<N> {
-        let inputs = [*base, *momenta];
-        let mut outputs = [[0.0; N]; 4];
-        let outputs = &mut outputs.as_flattened_mut()[..1 + 3 * N];
-        self.program.call(inputs.as_flattened(), outputs);
+    pub fn solve(&self, base: &Dm::Array<f64>, momenta: &Dm::Array<f64>) -> LinearSolution<Dm> {
+        let (dim, n) = (self.dim, self.dim.n());
+        let mut buffers = self.buffers.borrow_mut();
+        let (inputs, outputs) = &mut *buffers;
+        inputs[..n].copy_from_slice(base.as_ref());
+        inputs[n..].copy_from_slice(momenta.as_ref());
+        self.program.call(inputs, outputs);
         LinearSolution {
-            z: std::array::from_fn(|i| outputs[i]),
-            value: outputs[N],
-            residual: std::array::from_fn(|i| outputs[N + 1 + i]),
-            momenta_next: std::array::from_fn(|i| outputs[2 * N + 1 + i]),
+            z: dim.array(|i| outputs[i]),
+            value: outputs[n],
+            residual: dim.array(|i| outputs[n + 1 + i]),
+            momenta_next: dim.array(|i| outputs[2 * n + 1 + i]),
         }
     }
 }
@@ -163,13 +176,14 @@ pub(crate) fn remember_not_affine(key: EquationsKey) {
 }
 
 /// The program of the closed-form step: inputs (base, m), outputs (z, f, r, m').
-fn step_program<const N: usize>(
+fn step_program(
     pair: PairGraph,
-    momenta: &[f64; N],
-    sign: &[f64; N],
-    advances: &[bool; N],
-    eliminable: &[bool; N],
+    momenta: &[f64],
+    sign: &[f64],
+    advances: &[bool],
+    eliminable: &[bool],
 ) -> Result<Program, Refusal> {
+    let n = momenta.len();
     let PairGraph { mut graph, value, da, db, guards, .. } = pair;
     // A guarded trace holds on part of the space only; the closed form would have to check its guards.
     if !guards.is_empty() {
@@ -177,7 +191,7 @@ fn step_program<const N: usize>(
     }
     let g = &mut graph;
     // Momenta that do not advance (μ) are conserved exactly: constants of the run.
-    let m: Vec<Node> = (0..N)
+    let m: Vec<Node> = (0..n)
         .map(|i| {
             let input = g.input(momenta[i]);
             if advances[i] {
@@ -187,50 +201,50 @@ fn step_program<const N: usize>(
             }
         })
         .collect();
-    let r: Vec<Node> = (0..N)
+    let r: Vec<Node> = (0..n)
         .map(|i| {
             let s = g.constant(sign[i]);
             let term = g.mul(s, m[i]);
             g.add(da[i], term)
         })
         .collect();
-    let (group, shape): (Vec<usize>, Vec<usize>) = (0..N).partition(|&i| eliminable[i]);
+    let (group, shape): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| eliminable[i]);
     let pick = |nodes: &[Node], at: &[usize]| -> Vec<Node> { at.iter().map(|&i| nodes[i]).collect() };
     let zero = g.constant(0.0);
-    let inputs = 3 * N;
+    let inputs = 3 * n;
 
     // γ*(z_x) from the momentum-map rows, when they are affine in γ.
-    let gamma = solve_affine(g, &pick(&r, &group), &group, N)?;
+    let gamma = solve_affine(g, &pick(&r, &group), &group, n)?;
 
     // The shape rows with γ eliminated, when they are affine in z_x.
     let mut replace = vec![None; inputs];
     for (&e, &gamma_e) in group.iter().zip(&gamma) {
-        replace[N + e] = Some(gamma_e);
+        replace[n + e] = Some(gamma_e);
     }
     let r_shape = g.replace_inputs(&pick(&r, &shape), &replace);
-    let z_shape = solve_affine(g, &r_shape, &shape, N)?;
+    let z_shape = solve_affine(g, &r_shape, &shape, n)?;
 
     // z, and f, r, ∂f/∂b there.
-    let mut z = vec![zero; N];
+    let mut z = vec![zero; n];
     let mut replace = vec![None; inputs];
     for (&x, &z_x) in shape.iter().zip(&z_shape) {
-        (z[x], replace[N + x]) = (z_x, Some(z_x));
+        (z[x], replace[n + x]) = (z_x, Some(z_x));
     }
     for (&e, gamma_e) in group.iter().zip(g.replace_inputs(&gamma, &replace)) {
         z[e] = gamma_e;
     }
     let mut replace = vec![None; inputs];
-    for (slot, &z_i) in replace[N..2 * N].iter_mut().zip(&z) {
+    for (slot, &z_i) in replace[n..2 * n].iter_mut().zip(&z) {
         *slot = Some(z_i);
     }
     let at_z: Vec<Node> = std::iter::once(value).chain(r).chain(db).collect();
     let at_z = g.replace_inputs(&at_z, &replace);
-    let momenta_next = (0..N).map(|i| if advances[i] { at_z[1 + N + i] } else { m[i] });
-    let outputs: Vec<Node> = z.into_iter().chain(at_z[..=N].iter().copied()).chain(momenta_next).collect();
+    let momenta_next = (0..n).map(|i| if advances[i] { at_z[1 + n + i] } else { m[i] });
+    let outputs: Vec<Node> = z.into_iter().chain(at_z[..=n].iter().copied()).chain(momenta_next).collect();
     if !outputs.iter().all(|&o| graph.value(o).is_finite()) {
         return Err(Refusal::AtThisPoint);
     }
-    without_unknowns(graph.program(&outputs), N).ok_or(Refusal::AtThisPoint)
+    without_unknowns(graph.program(&outputs), n).ok_or(Refusal::AtThisPoint)
 }
 
 /// `program` with its inputs (base, b, m) renumbered to (base, m): the solution reads no b.
@@ -375,8 +389,9 @@ mod tests {
     fn a_zero_first_pivot_takes_the_other_row() {
         // f = a0 b1 + a1 (b0 + 2 b1): r = (b1 + m0, b0 + 2 b1 + m1), J = [[0, 1], [1, 2]].
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[1] + a[1] * (b[0] + b[1] * 2.0);
-        let step =
-            LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP).unwrap().unwrap();
+        let step = LinearStep::new(Fixed, f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP)
+            .unwrap()
+            .unwrap();
         let s = step.solve(&[0.0; 2], &[3.0, 5.0]);
         assert_eq!(s.z, [1.0, -3.0]);
         assert_eq!(s.residual, [0.0, 0.0]);
@@ -390,10 +405,18 @@ mod tests {
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
             a[0] * (b[0] * 3.0 + b[1]) + a[1] * (b[1] * 4.0 + b[0]) + b[0] * b[0] * b[1]
         };
-        let step =
-            LinearStep::new(f, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[true, false], &[false, true])
-                .unwrap()
-                .unwrap();
+        let step = LinearStep::new(
+            Fixed,
+            f,
+            &[0.0; 2],
+            &[0.3, 0.1],
+            &[0.5, 2.0],
+            &[1.0, -1.0],
+            &[true, false],
+            &[false, true],
+        )
+        .unwrap()
+        .unwrap();
         let (m0, m1) = (0.5, 2.0);
         let s = step.solve(&[0.0; 2], &[m0, m1]);
         let b0 = -(m1 / 4.0 + m0) * 4.0 / 11.0;
@@ -408,13 +431,15 @@ mod tests {
     fn nonlinear_equations_have_no_closed_form() {
         // r_0 = b0² + m0.
         let square = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] * b[0] + a[1] * b[1];
-        let step = LinearStep::new(square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &[true; 2], &NO_GROUP);
+        let step =
+            LinearStep::new(Fixed, square, &[0.0; 2], &[0.5, 0.5], &[-1.0, 0.0], &[1.0; 2], &[true; 2], &NO_GROUP);
         assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
         // Linear in γ, but r_x = 3 b0 + γ*² + m0 is not linear in b0 once γ* = (m1 − b0) / 4 is in.
         let quadratic_after = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| {
             a[0] * (b[0] * 3.0 + b[1] * b[1]) + a[1] * (b[1] * 4.0 + b[0])
         };
         let step = LinearStep::new(
+            Fixed,
             quadratic_after,
             &[0.0; 2],
             &[0.3, 0.1],
@@ -426,8 +451,16 @@ mod tests {
         assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
         // Not linear in γ.
         let cubic = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| a[0] * b[0] + a[1] * b[1] * b[1] * b[1];
-        let step =
-            LinearStep::new(cubic, &[0.0; 2], &[0.3, 0.1], &[0.5, 2.0], &[1.0, -1.0], &[true, false], &[false, true]);
+        let step = LinearStep::new(
+            Fixed,
+            cubic,
+            &[0.0; 2],
+            &[0.3, 0.1],
+            &[0.5, 2.0],
+            &[1.0, -1.0],
+            &[true, false],
+            &[false, true],
+        );
         assert_eq!(step.unwrap().err(), Some(Refusal::NotAffine));
     }
 
@@ -435,7 +468,7 @@ mod tests {
     fn a_singular_system_has_no_closed_form() {
         let f = |_: &[Traced; 2], a: &[Traced; 2], b: &[Traced; 2]| (a[0] + a[1]) * (b[0] + b[1]);
         // Affine, but its Jacobian is singular here: a property of the point, not of the equations.
-        let step = LinearStep::new(f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP);
+        let step = LinearStep::new(Fixed, f, &[0.0; 2], &[0.1, 0.2], &[1.0, 1.0], &[1.0; 2], &[true; 2], &NO_GROUP);
         assert_eq!(step.unwrap().err(), Some(Refusal::AtThisPoint));
     }
 }

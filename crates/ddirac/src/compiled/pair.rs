@@ -9,14 +9,12 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use nalgebra::{SMatrix, SVector};
-
 use super::executable::Executable;
 #[cfg(feature = "jit")]
 use super::JitError;
 use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
 use crate::ad::FirstDerivatives;
-use crate::dim::Fixed;
+use crate::dim::Dim;
 use crate::RuntimeInput;
 
 /// Why derivatives could not be compiled.
@@ -56,7 +54,8 @@ impl From<JitError> for CompileError {
 ///
 /// If the trace of f was guarded (f compares numbers, see [`super::trace`]), the programs hold only
 /// where the guards do: [`CompiledPair::first_or_mixed`] answers `None` elsewhere.
-pub struct CompiledPair<const N: usize> {
+pub struct CompiledPair<Dm: Dim> {
+    dim: Dm,
     first: Arc<Executable>,
     mixed: Arc<Executable>,
     /// The allowed signs of each guard ([`PairPrograms::guards`]).
@@ -73,24 +72,24 @@ struct Buffers {
     outputs: Vec<f64>,
 }
 
-impl<const N: usize> std::fmt::Debug for CompiledPair<N> {
+impl<Dm: Dim> std::fmt::Debug for CompiledPair<Dm> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("CompiledPair").field("instructions", &self.instructions).finish()
     }
 }
 
-impl<const N: usize> CompiledPair<N> {
+impl<Dm: Dim> CompiledPair<Dm> {
     /// Whether the trace had no guards: then its programs are those of a trace at any point.
     pub fn is_unguarded(&self) -> bool {
         self.guards.is_empty()
     }
 
     /// Traces `f` at (`base`, a = 0, `b`), differentiates it and compiles both programs.
-    pub fn new<F>(f: F, base: &[f64; N], b: &[f64; N]) -> Result<Self, CompileError>
+    pub fn new<F>(dim: Dm, f: F, base: &Dm::Array<f64>, b: &Dm::Array<f64>) -> Result<Self, CompileError>
     where
-        F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+        F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
     {
-        Self::from_programs(&pair_programs(f, base, b)?)
+        Self::from_programs(dim, &pair_programs(dim, f, base, b)?)
     }
 
     /// Compiles the programs of a pair function of N coordinates (from [`pair_programs`] or
@@ -98,28 +97,30 @@ impl<const N: usize> CompiledPair<N> {
     /// recorded), or shares the native code of an earlier run with the same programs
     /// ([`super::native_compilations`] counts the compilations); programs with other numbers of
     /// inputs or outputs are an error.
-    pub fn from_programs(programs: &PairPrograms) -> Result<Self, CompileError> {
+    pub fn from_programs(dim: Dm, programs: &PairPrograms) -> Result<Self, CompileError> {
+        let n = dim.n();
         let PairPrograms { first, mixed, guards, runtime, .. } = programs;
         let shape = |p: &Program| (p.inputs, p.outputs.len());
-        let (g, inputs) = (guards.len(), 2 * N + runtime.len());
-        if shape(first) != (inputs, 1 + 2 * N + g) || shape(mixed) != (inputs, 1 + 2 * N + N * N + g) {
+        let (g, inputs) = (guards.len(), 2 * n + runtime.len());
+        if shape(first) != (inputs, 1 + 2 * n + g) || shape(mixed) != (inputs, 1 + 2 * n + n * n + g) {
             return Err(CompileError::Native(format!(
-                "the programs do not compute a pair function of {N} coordinates (inputs and outputs {:?} and {:?})",
+                "the programs do not compute a pair function of {n} coordinates (inputs and outputs {:?} and {:?})",
                 shape(first),
                 shape(mixed)
             )));
         }
         let instructions = (first.instructions.len(), mixed.instructions.len());
-        let step_input = runtime.iter().position(|(input, _)| *input == RuntimeInput::Step).map(|i| 2 * N + i);
+        let step_input = runtime.iter().position(|(input, _)| *input == RuntimeInput::Step).map(|i| 2 * n + i);
         Ok(Self {
+            dim,
             first: super::cache::shared(first)?,
             mixed: super::cache::shared(mixed)?,
             guards: guards.clone(),
             instructions,
             step_input,
             buffers: RefCell::new(Buffers {
-                inputs: [0.0; N].iter().chain(&[0.0; N]).copied().chain(runtime.iter().map(|(_, v)| *v)).collect(),
-                outputs: vec![0.0; 1 + 2 * N + N * N + g],
+                inputs: std::iter::repeat_n(0.0, 2 * n).chain(runtime.iter().map(|(_, v)| *v)).collect(),
+                outputs: vec![0.0; 1 + 2 * n + n * n + g],
             }),
         })
     }
@@ -133,6 +134,7 @@ impl<const N: usize> CompiledPair<N> {
         let mut inputs = buffers.inputs.clone();
         inputs[slot] = step;
         Some(Self {
+            dim: self.dim,
             first: Arc::clone(&self.first),
             mixed: Arc::clone(&self.mixed),
             guards: self.guards.clone(),
@@ -146,14 +148,15 @@ impl<const N: usize> CompiledPair<N> {
     /// where a guard of the trace does not hold (the programs are another branch's there).
     pub fn first_or_mixed(
         &self,
-        base: &[f64; N],
-        b: &[f64; N],
+        base: &Dm::Array<f64>,
+        b: &Dm::Array<f64>,
         with_mixed: bool,
-    ) -> Option<(FirstDerivatives<Fixed<N>>, Option<SMatrix<f64, N, N>>)> {
+    ) -> Option<(FirstDerivatives<Dm>, Option<Dm::Matrix>)> {
+        let n = self.dim.n();
         let mut buffers = self.buffers.borrow_mut();
         let Buffers { inputs, outputs } = &mut *buffers;
-        inputs[..N].copy_from_slice(base);
-        inputs[N..2 * N].copy_from_slice(b);
+        inputs[..n].copy_from_slice(base.as_ref());
+        inputs[n..2 * n].copy_from_slice(b.as_ref());
         let program = if with_mixed { &self.mixed } else { &self.first };
         let outputs = &mut outputs[..program.outputs()];
         program.call(inputs, outputs);
@@ -163,10 +166,10 @@ impl<const N: usize> CompiledPair<N> {
         }
         let first = FirstDerivatives {
             value: outputs[0],
-            da: SVector::from_fn(|i, _| outputs[1 + i]),
-            db: SVector::from_fn(|i, _| outputs[1 + N + i]),
+            da: self.dim.vector(|i| outputs[1 + i]),
+            db: self.dim.vector(|i| outputs[1 + n + i]),
         };
-        let mixed = with_mixed.then(|| SMatrix::from_fn(|i, j| outputs[1 + 2 * N + i * N + j]));
+        let mixed = with_mixed.then(|| self.dim.matrix(|i, j| outputs[1 + 2 * n + i * n + j]));
         Some((first, mixed))
     }
 
@@ -174,21 +177,21 @@ impl<const N: usize> CompiledPair<N> {
     /// every entry within `tolerance` relative to the largest entry of its block.
     pub fn check_against(
         &self,
-        base: &[f64; N],
-        b: &[f64; N],
-        dual: (FirstDerivatives<Fixed<N>>, SMatrix<f64, N, N>),
+        base: &Dm::Array<f64>,
+        b: &Dm::Array<f64>,
+        dual: (FirstDerivatives<Dm>, Dm::Matrix),
         tolerance: f64,
     ) -> Result<(), CompileError> {
         let Some((c, cm)) = self.first_or_mixed(base, b, true) else {
             return Err(CompileError::Disagrees { what: "guards of the trace", compiled: f64::NAN, dual: 0.0 });
         };
-        let cm = cm.unwrap_or_else(SMatrix::zeros);
+        let cm = cm.unwrap_or_else(|| self.dim.matrix(|_, _| 0.0));
         let (d, dm) = dual;
         let blocks: [(&'static str, &[f64], &[f64]); 4] = [
             ("value", std::slice::from_ref(&c.value), std::slice::from_ref(&d.value)),
-            ("∂f/∂a", c.da.as_slice(), d.da.as_slice()),
-            ("∂f/∂b", c.db.as_slice(), d.db.as_slice()),
-            ("∂²f/∂a∂b", cm.as_slice(), dm.as_slice()),
+            ("∂f/∂a", Dm::entries(&c.da), Dm::entries(&d.da)),
+            ("∂f/∂b", Dm::entries(&c.db), Dm::entries(&d.db)),
+            ("∂²f/∂a∂b", Dm::matrix_entries(&cm), Dm::matrix_entries(&dm)),
         ];
         for (what, compiled, dual) in blocks {
             let scale = dual.iter().fold(1.0f64, |m, x| m.max(x.abs()));

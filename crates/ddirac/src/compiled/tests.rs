@@ -65,7 +65,7 @@ fn assert_block_close(what: &str, compiled: &[f64], dual: &[f64], tolerance: f64
 /// Traces `f` at (`base`, `b`), then compares both programs with [`ad::mixed`] at `points` random
 /// points within `radius` of it. Returns the programs.
 fn compare<G: Generic<N>, const N: usize>(f: &G, base: [f64; N], b: [f64; N], radius: f64) -> PairPrograms {
-    let programs = pair_programs(|base, a, b| f.eval(base, a, b), &base, &b).expect("the function compiles");
+    let programs = pair_programs(Fixed, |base, a, b| f.eval(base, a, b), &base, &b).expect("the function compiles");
     assert_eq!((programs.first.inputs, programs.mixed.inputs), (2 * N, 2 * N));
     assert_eq!((programs.first.outputs.len(), programs.mixed.outputs.len()), (1 + 2 * N, 1 + 2 * N + N * N));
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
@@ -214,7 +214,7 @@ fn program_sizes_of_the_paper_systems() {
 #[test]
 fn branching_on_an_input_dependent_value_is_detected() {
     let branch = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| if a[0].re() > 0.0 { a[0] } else { b[0] };
-    assert_eq!(pair_programs(branch, &[1.0], &[2.0]), Err(NotCompiled::ValueInspected { operation: "re" }));
+    assert_eq!(pair_programs(Fixed, branch, &[1.0], &[2.0]), Err(NotCompiled::ValueInspected { operation: "re" }));
 }
 
 /// A comparison is answered for the trace point and guarded: the programs report, through their guard
@@ -222,7 +222,7 @@ fn branching_on_an_input_dependent_value_is_detected() {
 #[test]
 fn comparisons_are_guarded() {
     let larger = |base: &[Traced; 1], _: &[Traced; 1], b: &[Traced; 1]| if base[0] < b[0] { b[0] } else { base[0] };
-    let programs = pair_programs(larger, &[1.0], &[2.0]).unwrap();
+    let programs = pair_programs(Fixed, larger, &[1.0], &[2.0]).unwrap();
     assert_eq!(programs.guards.len(), 1);
     let at = |base: f64, b: f64| {
         let mut out = [0.0; 4];
@@ -242,7 +242,7 @@ fn comparisons_are_guarded() {
             b[0]
         }
     };
-    assert!(pair_programs(constant, &[1.0], &[2.0]).unwrap().guards.is_empty());
+    assert!(pair_programs(Fixed, constant, &[1.0], &[2.0]).unwrap().guards.is_empty());
 }
 
 #[test]
@@ -252,22 +252,22 @@ fn inspecting_constants_is_allowed() {
         let scale = if c.re() > 1.0 && c > 1.0 { c.re() } else { 0.0 };
         a[0] * b[0] * scale
     };
-    let programs = pair_programs(f, &[0.0], &[3.0]).expect("only a constant is inspected");
+    let programs = pair_programs(Fixed, f, &[0.0], &[3.0]).expect("only a constant is inspected");
     assert_eq!(run(&programs.mixed, &[0.0, 3.0]), [0.0, 3.0 * 2f64.sqrt(), 0.0, 2f64.sqrt()]);
 }
 
 #[test]
 fn unsupported_operations_and_non_finite_values_are_reported() {
     let bessel = |_: &[Traced; 1], a: &[Traced; 1], _: &[Traced; 1]| a[0].sph_j0();
-    assert_eq!(pair_programs(bessel, &[0.0], &[0.0]), Err(NotCompiled::Unsupported { operation: "sph_j0" }));
+    assert_eq!(pair_programs(Fixed, bessel, &[0.0], &[0.0]), Err(NotCompiled::Unsupported { operation: "sph_j0" }));
     let remainder = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| a[0] % b[0];
-    assert_eq!(pair_programs(remainder, &[0.0], &[1.0]), Err(NotCompiled::Unsupported { operation: "%" }));
+    assert_eq!(pair_programs(Fixed, remainder, &[0.0], &[1.0]), Err(NotCompiled::Unsupported { operation: "%" }));
     let constant_bessel = |_: &[Traced; 1], a: &[Traced; 1], _: &[Traced; 1]| a[0] * Traced::from(0.0).sph_j0();
-    assert!(pair_programs(constant_bessel, &[0.0], &[0.0]).is_ok());
+    assert!(pair_programs(Fixed, constant_bessel, &[0.0], &[0.0]).is_ok());
     let root = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| (a[0] + b[0]).sqrt();
-    assert!(matches!(pair_programs(root, &[0.0], &[-1.0]), Err(NotCompiled::NonFinite { what: "value", .. })));
+    assert!(matches!(pair_programs(Fixed, root, &[0.0], &[-1.0]), Err(NotCompiled::NonFinite { what: "value", .. })));
     assert!(matches!(
-        pair_programs(root, &[0.0], &[0.0]),
+        pair_programs(Fixed, root, &[0.0], &[0.0]),
         Err(NotCompiled::NonFinite { what: "first derivative", value }) if value == f64::INFINITY
     ));
 }
@@ -280,8 +280,8 @@ fn a_traced_number_kept_from_another_trace_is_reported() {
         kept.set(Some(a[0]));
         a[0] * old
     };
-    assert!(pair_programs(keep, &[0.0], &[1.0]).is_ok());
-    assert_eq!(pair_programs(keep, &[0.0], &[1.0]), Err(NotCompiled::ForeignValue));
+    assert!(pair_programs(Fixed, keep, &[0.0], &[1.0]).is_ok());
+    assert_eq!(pair_programs(Fixed, keep, &[0.0], &[1.0]), Err(NotCompiled::ForeignValue));
 }
 
 #[test]

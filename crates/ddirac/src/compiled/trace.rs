@@ -34,10 +34,11 @@ use crate::RuntimeInput;
 ///
 /// ```
 /// use ddirac::compiled::{pair_programs, NotCompiled, Traced};
+/// use ddirac::dim::Fixed;
 /// use num_dual::DualStruct;
 /// // `max` by hand: which branch runs depends on the point.
 /// let max = |_: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| if a[0].re() > b[0].re() { a[0] } else { b[0] };
-/// assert_eq!(pair_programs(max, &[0.0], &[1.0]), Err(NotCompiled::ValueInspected { operation: "re" }));
+/// assert_eq!(pair_programs(Fixed, max, &[0.0], &[1.0]), Err(NotCompiled::ValueInspected { operation: "re" }));
 /// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -77,9 +78,10 @@ pub enum NotCompiled {
 ///
 /// ```
 /// use ddirac::compiled::{pair_programs, Traced};
+/// use ddirac::dim::Fixed;
 /// use num_dual::DualNum;
 /// let f = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| (base[0] + a[0]) * (base[0] + b[0]).sin();
-/// let programs = pair_programs(f, &[1.0], &[0.5]).unwrap();
+/// let programs = pair_programs(Fixed, f, &[1.0], &[0.5]).unwrap();
 /// // Inputs (base, b); outputs f, ∂f/∂a, ∂f/∂b at a = 0.
 /// let mut out = [0.0; 3];
 /// programs.first.eval(&[2.0, 0.25], &mut Vec::new(), &mut out);

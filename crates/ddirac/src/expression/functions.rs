@@ -55,6 +55,7 @@ mod tests {
 
     use super::FUNCTIONS;
     use crate::compiled::{pair_programs, CompiledPair, Traced};
+    use crate::dim::Fixed;
     use crate::expression::Scope;
 
     /// Every function gives the same value and first derivatives through the interpreter on dual
@@ -69,9 +70,9 @@ mod tests {
             let source = if binary { format!("{name}(x, y)") } else { format!("{name}(x)") };
             let compiled = scope.compile_expression(&source).unwrap();
             let f = |base: &[Traced; 2], a: &[Traced; 2], _: &[Traced; 2]| compiled.eval_with(|i| base[i] + a[i]);
-            let programs = pair_programs(f, &[0.3, 0.7], &[0.0; 2]).unwrap_or_else(|e| panic!("{source}: {e}"));
+            let programs = pair_programs(Fixed, f, &[0.3, 0.7], &[0.0; 2]).unwrap_or_else(|e| panic!("{source}: {e}"));
             assert!(programs.guards.is_empty(), "{source}");
-            let native = CompiledPair::<2>::from_programs(&programs).unwrap();
+            let native = CompiledPair::from_programs(Fixed::<2>, &programs).unwrap();
             let mut checked = 0;
             for (x, y) in points {
                 let dual = |dx, dy| compiled.eval(&[Dual64::new(x, dx), Dual64::new(y, dy)]);

@@ -20,7 +20,7 @@ use crate::{Scalar, System};
 /// The Euler–Lagrange vector field of a system, with its derivatives compiled or by dual numbers.
 pub struct EulerLagrange<'a, S, const N: usize> {
     system: &'a S,
-    compiled: Option<(CompiledPair<N>, CompiledPair<N>)>,
+    compiled: Option<(CompiledPair<Fixed<N>>, CompiledPair<Fixed<N>>)>,
 }
 
 /// (a, b) ↦ L(q + a, b) at a fixed q.
@@ -55,6 +55,7 @@ impl<'a, S: System<N>, const N: usize> EulerLagrange<'a, S, N> {
         let compiled = compile
             .then(|| {
                 let pv = CompiledPair::new(
+                    Fixed,
                     |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| {
                         system.lagrangian(&std::array::from_fn(|i| a[i] + base[i]), b)
                     },
@@ -62,6 +63,7 @@ impl<'a, S: System<N>, const N: usize> EulerLagrange<'a, S, N> {
                     v,
                 );
                 let vv = CompiledPair::new(
+                    Fixed,
                     |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| {
                         system.lagrangian(base, &std::array::from_fn(|i| b[i] + a[i]))
                     },

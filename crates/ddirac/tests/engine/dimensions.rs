@@ -1,6 +1,9 @@
 //! The engine's parts written over a dimension (`ddirac::dim`) give the same numbers, bit for bit,
-//! whether the dimension is fixed when the engine is compiled or chosen at run time.
+//! whether the dimension is fixed when the engine is compiled or chosen at run time: Newton's method
+//! and compiled derivatives here, the dual numbers in the library's `ad` tests.
 
+use ddirac::ad::{self, PairFunction};
+use ddirac::compiled::{CompiledPair, Traced};
 use ddirac::dim::{Dim, Dynamic, Fixed};
 use ddirac::newton::{self, KeptJacobian};
 use ddirac::NewtonOptions;
@@ -86,4 +89,72 @@ fn newton_reports_a_singular_jacobian_in_a_dynamic_dimension() {
     })
     .unwrap_err();
     assert_eq!(failure.reason, newton::FailureReason::SingularJacobian);
+}
+
+/// f(base, a, b) = Σ_i sin(q_i − q_{i+1}) v_i² + ½ (Σ q_i)² with q = base + a, v = b − a: every
+/// derivative block is full.
+fn coupled<T: ddirac::Scalar>(base: &[T], a: &[T], b: &[T]) -> T {
+    let n = base.len();
+    let q = |i: usize| base[i] + a[i];
+    let v = |i: usize| b[i] - a[i];
+    let mut sum = T::from(0.0);
+    let mut total = T::from(0.0);
+    for i in 0..n {
+        sum += (q(i) - q((i + 1) % n)).sin() * v(i) * v(i);
+        total += q(i);
+    }
+    sum + total * total * 0.5
+}
+
+fn compiled_alike<const N: usize>() {
+    let base: [f64; N] = std::array::from_fn(|i| 0.2 * i as f64 - 0.3);
+    let b: [f64; N] = std::array::from_fn(|i| 0.05 * (i as f64 + 1.0).cos());
+    let fixed = CompiledPair::new(
+        Fixed::<N>,
+        |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| coupled(base, a, b),
+        &base,
+        &b,
+    )
+    .unwrap();
+    let dynamic = CompiledPair::new(
+        Dynamic(N),
+        |base: &Vec<Traced>, a: &Vec<Traced>, b: &Vec<Traced>| coupled(base, a, b),
+        &base.to_vec(),
+        &b.to_vec(),
+    )
+    .unwrap();
+    assert_eq!(fixed.instructions, dynamic.instructions, "n = {N}");
+    // At another point than the trace's.
+    let (base, b) = (base.map(|x| x + 0.1), b.map(|x| 1.5 * x));
+    let (first, mixed) = fixed.first_or_mixed(&base, &b, true).unwrap();
+    let (dyn_first, dyn_mixed) = dynamic.first_or_mixed(&base.to_vec(), &b.to_vec(), true).unwrap();
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(first.value.to_bits(), dyn_first.value.to_bits());
+    assert_eq!(bits(first.da.as_slice()), bits(dyn_first.da.as_slice()));
+    assert_eq!(bits(first.db.as_slice()), bits(dyn_first.db.as_slice()));
+    assert_eq!(bits(mixed.unwrap().as_slice()), bits(dyn_mixed.unwrap().as_slice()));
+    // And both are the derivatives: against dual numbers in the dynamic dimension.
+    struct F<'a>(&'a [f64]);
+    impl PairFunction<Dynamic> for F<'_> {
+        fn eval<D: ddirac::Scalar>(&self, a: &Vec<D>, b: &Vec<D>) -> D {
+            let base: Vec<D> = self.0.iter().map(|&x| D::from(x)).collect();
+            coupled(&base, a, b)
+        }
+    }
+    let dual = ad::mixed(Dynamic(N), &F(&base), &vec![0.0; N], &b.to_vec());
+    dynamic
+        .check_against(
+            &base.to_vec(),
+            &b.to_vec(),
+            (ad::FirstDerivatives { value: dual.value, da: dual.da, db: dual.db }, dual.dadb),
+            1e-12,
+        )
+        .unwrap();
+}
+
+#[test]
+fn compiled_derivatives_are_alike_in_a_fixed_and_a_dynamic_dimension() {
+    compiled_alike::<1>();
+    compiled_alike::<5>();
+    compiled_alike::<17>();
 }

@@ -49,7 +49,7 @@ fn a_sum_of_a_hundred_thousand_terms_parses_compiles_and_differentiates() {
     let f = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| {
         program.eval_with(|i| if i == 0 { base[0] + a[0] } else { b[0] - a[0] })
     };
-    let programs = pair_programs(f, &[x], &[v]).unwrap();
+    let programs = pair_programs(Fixed, f, &[x], &[v]).unwrap();
     let mut out = [0.0; 3];
     programs.first.eval(&[x, v], &mut Vec::new(), &mut out);
     // f = (b − a)² + n (base + a) at a = 0: value, ∂f/∂a = n − 2b, ∂f/∂b = 2b.

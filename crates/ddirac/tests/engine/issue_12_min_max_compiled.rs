@@ -7,6 +7,7 @@
 //! exact motion.
 
 use ddirac::compiled::{pair_programs, Traced};
+use ddirac::dim::Fixed;
 use ddirac::expression::{ExpressionSpec, ExpressionSystem};
 use ddirac::{
     solve, Coordinate, DerivativePath, Differentiation, InitialMomentum, Method, OutputOptions, Problem, System,
@@ -64,7 +65,7 @@ fn a_piecewise_spring_written_with_max_and_min_compiles_and_follows_the_exact_mo
 fn min_and_max_are_operations_of_the_program_not_guarded_comparisons() {
     let system = oscillator("0.5*k1*max(x, 0)^2 + 0.5*k2*min(x, 0)^2");
     let f = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| system.lagrangian(&[base[0] + a[0]], &[b[0]]);
-    let programs = pair_programs(f, &[1.0], &[0.0]).unwrap();
+    let programs = pair_programs(Fixed, f, &[1.0], &[0.0]).unwrap();
     assert!(programs.guards.is_empty(), "{} guards", programs.guards.len());
     let mut out = [0.0; 3];
     for (x, force) in [(0.5, -2.0), (-0.5, 0.5), (-2.0, 2.0)] {

@@ -6,6 +6,7 @@
 //! where dual numbers went on.
 
 use ddirac::compiled::{pair_programs, Traced};
+use ddirac::dim::Fixed;
 use ddirac::Scalar;
 
 /// f(base, a, b) = min(−1, √(base + a)) + b²/2: the constant is always picked.
@@ -17,7 +18,7 @@ fn f<D: Scalar>(base: &[D; 1], a: &[D; 1], b: &[D; 1]) -> D {
 #[test]
 fn the_untaken_square_root_of_min_gives_a_zero_derivative_at_zero_not_nan() {
     let traced = |base: &[Traced; 1], a: &[Traced; 1], b: &[Traced; 1]| f(base, a, b);
-    let programs = pair_programs(traced, &[1.0], &[0.5]).expect("the function compiles at x = 1");
+    let programs = pair_programs(Fixed, traced, &[1.0], &[0.5]).expect("the function compiles at x = 1");
     let (mut first, mut mixed) = ([0.0; 3], [0.0; 4]);
     for x in [0.0, 1e-300, 0.25, 4.0] {
         programs.first.eval(&[x, 0.5], &mut Vec::new(), &mut first);
