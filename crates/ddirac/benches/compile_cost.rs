@@ -70,7 +70,7 @@ fn row<S: System<N>, const N: usize>(name: &str, system: &S, base: [f64; N]) {
     let ld = DiscreteLagrangian::new(system, Rule::Midpoint, STEP);
     let traced = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| ld.eval_local(base, a, b);
     let programs = pair_programs(Fixed, traced, &base, &z).expect("the Lagrangian traces");
-    let estimate = CompileCost::estimate::<N>(&programs);
+    let estimate = CompileCost::estimate(N, &programs);
     let (first, mixed) = (&programs.first, &programs.mixed);
     let compile = compile_seconds(first) + compile_seconds(mixed);
 

@@ -13,8 +13,8 @@ use std::fmt::Debug;
 use std::ops::{Index, IndexMut, SubAssign};
 
 /// What an entry of a [`Dim::Array`] must be.
-pub trait Entry: Clone + Debug + 'static {}
-impl<T: Clone + Debug + 'static> Entry for T {}
+pub trait Entry: Clone + Debug + PartialEq + 'static {}
+impl<T: Clone + Debug + PartialEq + 'static> Entry for T {}
 
 /// A number of coordinates, and the types that hold n values, a vector of n numbers and an n × n
 /// matrix.
@@ -28,7 +28,14 @@ impl<T: Clone + Debug + 'static> Entry for T {}
 /// ```
 pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// n values: `[T; N]` or `Vec<T>`.
-    type Array<T: Entry>: Clone + 'static + Debug + AsRef<[T]> + AsMut<[T]> + Index<usize, Output = T> + IndexMut<usize>;
+    type Array<T: Entry>: Clone
+        + 'static
+        + Debug
+        + PartialEq
+        + AsRef<[T]>
+        + AsMut<[T]>
+        + Index<usize, Output = T>
+        + IndexMut<usize>;
     /// A column of n numbers: `SVector<f64, N>` or `DVector<f64>`.
     type Vector: Clone
         + Debug
@@ -49,6 +56,9 @@ pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
 
     /// n.
     fn n(self) -> usize;
+
+    /// The dimension of an array of it.
+    fn of<T: Entry>(array: &Self::Array<T>) -> Self;
 
     /// The values f(0), …, f(n − 1).
     fn array<T: Entry>(self, f: impl FnMut(usize) -> T) -> Self::Array<T>;
@@ -94,6 +104,11 @@ impl<const N: usize> Dim for Fixed<N> {
     #[inline(always)]
     fn n(self) -> usize {
         N
+    }
+
+    #[inline(always)]
+    fn of<T: Entry>(_: &[T; N]) -> Self {
+        Fixed
     }
 
     #[inline(always)]
@@ -156,6 +171,10 @@ impl Dim for Dynamic {
 
     fn n(self) -> usize {
         self.0
+    }
+
+    fn of<T: Entry>(array: &Vec<T>) -> Self {
+        Dynamic(array.len())
     }
 
     fn array<T: Entry>(self, f: impl FnMut(usize) -> T) -> Vec<T> {

@@ -4,9 +4,8 @@
 //! and failure reporting; a scheme only says how to evaluate its residual and Jacobian, how the
 //! momenta advance, and how the solved unknowns move the configuration (reconstruction).
 
-use crate::dim::Fixed;
+use crate::dim::{Dim, Entry, Fixed};
 use crate::Scalar;
-use nalgebra::{SMatrix, SVector};
 
 use crate::ad::{self, FirstDerivatives, PairFunction};
 use crate::compiled::{
@@ -16,15 +15,17 @@ use crate::compiled::{
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Evaluation<const N: usize> {
+#[derive(Debug, Clone)]
+pub(crate) struct Evaluation<Dm: Dim> {
     /// The residual r(z); its Jacobian ∂r/∂z is the mixed block ∂²f/∂a∂b itself.
-    pub residual: SVector<f64, N>,
+    pub residual: Dm::Vector,
     /// L_d(q_k, q_{k+1}) at the trial point (the paper's discrete energy).
     pub discrete_energy: f64,
     /// The scheme momenta at k + 1 if z is accepted.
-    pub momenta_next: [f64; N],
+    pub momenta_next: Dm::Array<f64>,
 }
+
+impl<const N: usize> Copy for Evaluation<Fixed<N>> {}
 
 /// The form of every scheme's step equations in the derivatives of its generating function f at
 /// (base, 0, z) and the scheme momenta m of step k:
@@ -36,31 +37,28 @@ pub(crate) struct Evaluation<const N: usize> {
 /// with Jacobian ∂r/∂z = ∂²f/∂a∂b. The unknowns marked `eliminable` are the group unknowns γ of a
 /// reduced scheme: row i of r is the momentum-map equation of unknown i, which the conserved μ makes
 /// solvable for it alone ([`crate::compiled::LinearStep`] eliminates them when that equation is linear).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct StepEquations<const N: usize> {
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StepEquations<Dm: Dim> {
     /// The factor of m_i in r_i: ±1.
-    pub sign: [f64; N],
+    pub sign: Dm::Array<f64>,
     /// Whether m_i advances to ∂f/∂b_i (otherwise it is conserved).
-    pub advances: [bool; N],
+    pub advances: Dm::Array<bool>,
     /// Whether unknown i is a group unknown with its own momentum-map row.
-    pub eliminable: [bool; N],
+    pub eliminable: Dm::Array<bool>,
 }
 
-impl<const N: usize> StepEquations<N> {
+impl<const N: usize> Copy for StepEquations<Fixed<N>> {}
+
+impl<Dm: Dim> StepEquations<Dm> {
     /// Residual and by-products from the generating function's derivatives `d` at the trial unknowns.
     #[inline]
-    pub fn evaluate(&self, momenta: &[f64; N], d: &FirstDerivatives<Fixed<N>>) -> Evaluation<N> {
+    pub fn evaluate(&self, momenta: &Dm::Array<f64>, d: &FirstDerivatives<Dm>) -> Evaluation<Dm> {
+        let dim = Dm::of(momenta);
         Evaluation {
-            residual: SVector::from_fn(|i, _| d.da[i] + self.sign[i] * momenta[i]),
+            residual: dim.vector(|i| d.da[i] + self.sign[i] * momenta[i]),
             discrete_energy: d.value,
-            momenta_next: self.advance(momenta, &d.db.into()),
+            momenta_next: dim.array(|i| if self.advances[i] { d.db[i] } else { momenta[i] }),
         }
-    }
-
-    /// The next momenta from the current ones and ∂f/∂b.
-    #[inline]
-    pub fn advance(&self, momenta: &[f64; N], db: &[f64; N]) -> [f64; N] {
-        std::array::from_fn(|i| if self.advances[i] { db[i] } else { momenta[i] })
     }
 }
 
@@ -68,32 +66,32 @@ impl<const N: usize> StepEquations<N> {
 ///
 /// *Scheme momenta* are the scheme's own momentum variables: p for the unreduced schemes,
 /// (w, μ) = λ̂_d(q, p) for the reduced ones, stored at the positions of the x and g coordinates.
-pub(crate) trait Scheme<const N: usize> {
+pub(crate) trait Scheme<Dm: Dim> {
     /// The chart base for a step from a configuration whose chart base is `q`.
-    fn base(&self, q: &[f64; N]) -> [f64; N];
+    fn base(&self, q: &Dm::Array<f64>) -> Dm::Array<f64>;
 
     /// The generating function f(base, a, b) of the step: its derivatives at a = 0, b = z give the
     /// residual, the next momenta and the Jacobian ([`Scheme::evaluate`]). The base is a variable
     /// too when the function is traced for [`crate::compiled`].
-    fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    fn generating<D, B>(&self, base: &Dm::Array<B>, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D
     where
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy;
+        B: Entry + Copy;
 
     /// How the residual and the next momenta are formed from the generating function's derivatives.
-    fn equations(&self) -> StepEquations<N>;
+    fn equations(&self) -> StepEquations<Dm>;
 
     /// The configuration increment q_{k+1} − q_k produced by the unknowns `z` (reconstruction).
-    fn increment(&self, z: &SVector<f64, N>) -> [f64; N];
+    fn increment(&self, z: &Dm::Vector) -> Dm::Array<f64>;
 
     /// The unknowns that produce a configuration increment (the inverse of [`Scheme::increment`]).
-    fn unknowns(&self, dq: &[f64; N]) -> SVector<f64, N>;
+    fn unknowns(&self, dq: &Dm::Array<f64>) -> Dm::Vector;
 
     /// Scheme momenta from canonical momenta p.
-    fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N];
+    fn momenta_from_p(&self, p: &Dm::Array<f64>) -> Dm::Array<f64>;
 
     /// Canonical momenta p from scheme momenta.
-    fn p_from_momenta(&self, momenta: &[f64; N]) -> [f64; N];
+    fn p_from_momenta(&self, momenta: &Dm::Array<f64>) -> Dm::Array<f64>;
 
     /// The same scheme with step size `step` (the sub-steps of a composition or of a subdivided step).
     fn resized(&self, step: f64) -> Self
@@ -108,16 +106,16 @@ pub(crate) const AUTO_MIN_STEPS: usize = 5000;
 
 /// How a run evaluates its scheme's generating function: compiled programs (native code with the
 /// `jit` feature, else interpreted) or dual numbers.
-pub(crate) enum StepDerivatives<const N: usize> {
+pub(crate) enum StepDerivatives<Dm: Dim> {
     /// Compiled derivatives, and the compiled closed-form step when the step equations are linear.
     Compiled {
-        pair: Box<CompiledPair<Fixed<N>>>,
-        linear: Option<Box<LinearStep<Fixed<N>>>>,
+        pair: Box<CompiledPair<Dm>>,
+        linear: Option<Box<LinearStep<Dm>>>,
     },
     Dual,
 }
 
-impl<const N: usize> StepDerivatives<N> {
+impl<Dm: Dim> StepDerivatives<Dm> {
     /// Compiles the derivatives of `scheme` when `choice` allows it, checking them against dual numbers
     /// at the first step's base and predictor `z` (and the closed-form step, if the equations are
     /// linear, at its solution for the first step's momenta). Under [`Differentiation::Auto`] a
@@ -126,13 +124,14 @@ impl<const N: usize> StepDerivatives<N> {
     /// save ([`CompileCost`]; without the `jit` feature, whose interpreted steps would be slower,
     /// unless the step has a closed form); under [`Differentiation::Compiled`] a failure is an error.
     pub fn new(
-        scheme: &impl Scheme<N>,
+        scheme: &impl Scheme<Dm>,
         choice: Differentiation,
         steps: usize,
-        base: &[f64; N],
-        z: &[f64; N],
-        momenta: &[f64; N],
+        base: &Dm::Array<f64>,
+        z: &Dm::Array<f64>,
+        momenta: &Dm::Array<f64>,
     ) -> Result<(Self, DerivativePath), CompileError> {
+        let dim = Dm::of(base);
         let dual_numbers = |reason: Option<String>| Ok((Self::Dual, DerivativePath::Dual { reason }));
         if choice == Differentiation::Dual {
             return dual_numbers(None);
@@ -142,14 +141,16 @@ impl<const N: usize> StepDerivatives<N> {
                 "{steps} steps: compiling costs more than it saves below {AUTO_MIN_STEPS}"
             )));
         }
-        let generating = |base: &[Traced; N], a: &[Traced; N], b: &[Traced; N]| scheme.generating(base, a, b);
-        let programs = match (pair_programs_with_runtime_inputs(Fixed, generating, base, z), choice) {
+        let generating = |base: &Dm::Array<Traced>, a: &Dm::Array<Traced>, b: &Dm::Array<Traced>| {
+            scheme.generating::<Traced, Traced>(base, a, b)
+        };
+        let programs = match (pair_programs_with_runtime_inputs(dim, generating, base, z), choice) {
             (Ok(programs), _) => programs,
             (Err(e), Differentiation::Auto) => return dual_numbers(Some(e.to_string())),
             (Err(e), _) => return Err(e.into()),
         };
         let refusal = match choice {
-            Differentiation::Auto => CompileCost::estimate::<N>(&programs).refusal(steps),
+            Differentiation::Auto => CompileCost::estimate(dim.n(), &programs).refusal(steps),
             _ => None,
         };
         // Native code is refused before it is generated. Interpreted programs (without the `jit`
@@ -159,8 +160,8 @@ impl<const N: usize> StepDerivatives<N> {
             Some(reason) if cfg!(feature = "jit") => return dual_numbers(Some(reason)),
             refusal => refusal,
         };
-        let compiled = CompiledPair::from_programs(Fixed, &programs).and_then(|pair| {
-            let dual = ad::mixed(Fixed, &Generating { scheme, base }, &[0.0; N], z);
+        let compiled = CompiledPair::from_programs(dim, &programs).and_then(|pair| {
+            let dual = ad::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
@@ -200,11 +201,12 @@ impl<const N: usize> StepDerivatives<N> {
 
     /// Whether these derivatives pass, at the first step (`base`, `z`), the check against dual
     /// numbers that [`StepDerivatives::new`] makes at the step it prepares them at.
-    pub fn serve_first_step(&self, scheme: &impl Scheme<N>, base: &[f64; N], z: &[f64; N]) -> bool {
+    pub fn serve_first_step(&self, scheme: &impl Scheme<Dm>, base: &Dm::Array<f64>, z: &Dm::Array<f64>) -> bool {
         match self {
             Self::Dual => true,
             Self::Compiled { pair, .. } => {
-                let dual = ad::mixed(Fixed, &Generating { scheme, base }, &[0.0; N], z);
+                let dim = Dm::of(base);
+                let dual = ad::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
                 let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
                 pair.check_against(base, z, (first, dual.dadb), 1e-9).is_ok()
             }
@@ -226,7 +228,7 @@ impl<const N: usize> StepDerivatives<N> {
 
     /// The compiled closed-form step, if the run has one.
     #[inline]
-    pub fn linear_step(&self) -> Option<&LinearStep<Fixed<N>>> {
+    pub fn linear_step(&self) -> Option<&LinearStep<Dm>> {
         match self {
             Self::Compiled { linear, .. } => linear.as_deref(),
             Self::Dual => None,
@@ -238,18 +240,20 @@ impl<const N: usize> StepDerivatives<N> {
     #[inline]
     pub fn first_or_mixed(
         &self,
-        scheme: &impl Scheme<N>,
-        base: &[f64; N],
-        z: &SVector<f64, N>,
+        scheme: &impl Scheme<Dm>,
+        base: &Dm::Array<f64>,
+        z: &Dm::Vector,
         with_mixed: bool,
-    ) -> (FirstDerivatives<Fixed<N>>, Option<SMatrix<f64, N, N>>) {
+    ) -> (FirstDerivatives<Dm>, Option<Dm::Matrix>) {
+        let dim = Dm::of(base);
+        let z = dim.array(|i| z[i]);
         let compiled = match self {
-            Self::Compiled { pair, .. } => pair.first_or_mixed(base, &(*z).into(), with_mixed),
+            Self::Compiled { pair, .. } => pair.first_or_mixed(base, &z, with_mixed),
             Self::Dual => None,
         };
         // Where a guard of the trace fails (another branch of a comparison), dual numbers answer.
         compiled.unwrap_or_else(|| {
-            ad::first_or_mixed(Fixed, &Generating { scheme, base }, &[0.0; N], &(*z).into(), with_mixed)
+            ad::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &z, with_mixed)
         })
     }
 }
@@ -258,26 +262,28 @@ impl<const N: usize> StepDerivatives<N> {
 /// equations are known by their compiled derivatives `programs` (h and the parameters as runtime
 /// inputs) and what the closed form is sought with besides the point (the runtime inputs' values, the
 /// conserved momenta, which are constants of it, the signs and the roles of the unknowns).
-fn closed_form<const N: usize, F>(
+fn closed_form<Dm: Dim, F>(
     generating: F,
     programs: &PairPrograms,
-    equations: &StepEquations<N>,
-    base: &[f64; N],
-    z: &[f64; N],
-    momenta: &[f64; N],
-) -> Result<Option<LinearStep<Fixed<N>>>, CompileError>
+    equations: &StepEquations<Dm>,
+    base: &Dm::Array<f64>,
+    z: &Dm::Array<f64>,
+    momenta: &Dm::Array<f64>,
+) -> Result<Option<LinearStep<Dm>>, CompileError>
 where
-    F: Fn(&[Traced; N], &[Traced; N], &[Traced; N]) -> Traced,
+    F: Fn(&Dm::Array<Traced>, &Dm::Array<Traced>, &Dm::Array<Traced>) -> Traced,
 {
-    let StepEquations { sign, advances, eliminable } = equations;
-    let conserved = (0..N).filter(|&i| !advances[i]).map(|i| momenta[i].to_bits());
+    let (dim, n) = (Dm::of(base), Dm::of(base).n());
+    let (sign, advances, eliminable) =
+        (equations.sign.as_ref(), equations.advances.as_ref(), equations.eliminable.as_ref());
+    let conserved = (0..n).filter(|&i| !advances[i]).map(|i| momenta[i].to_bits());
     let runtime = programs.runtime.iter().map(|(_, v)| v.to_bits());
-    let roles = (0..N).map(|i| sign[i].to_bits() ^ u64::from(advances[i]) << 1 ^ u64::from(eliminable[i]));
+    let roles = (0..n).map(|i| sign[i].to_bits() ^ u64::from(advances[i]) << 1 ^ u64::from(eliminable[i]));
     let key = (programs.mixed.clone(), runtime.chain(conserved).chain(roles).collect::<Vec<u64>>());
     if compiled::known_not_affine(&key) {
         return Ok(None);
     }
-    match LinearStep::new(Fixed, generating, base, z, momenta, sign, advances, eliminable)? {
+    match LinearStep::new(dim, generating, base, z, momenta.as_ref(), sign, advances, eliminable)? {
         Ok(linear) => Ok(Some(linear)),
         Err(refusal) => {
             if refusal == Refusal::NotAffine {
@@ -291,25 +297,26 @@ where
 /// Checks the closed-form step at (`base`, `momenta`) against dual numbers at its solution: the
 /// residual of the step equations vanishes there (relative 1e-9), and the value and the next
 /// momenta agree.
-fn check_linear<const N: usize>(
-    scheme: &impl Scheme<N>,
-    equations: &StepEquations<N>,
-    linear: &LinearStep<Fixed<N>>,
-    base: &[f64; N],
-    momenta: &[f64; N],
+fn check_linear<Dm: Dim>(
+    scheme: &impl Scheme<Dm>,
+    equations: &StepEquations<Dm>,
+    linear: &LinearStep<Dm>,
+    base: &Dm::Array<f64>,
+    momenta: &Dm::Array<f64>,
 ) -> Result<(), CompileError> {
+    let dim = Dm::of(base);
     let solution = linear.solve(base, momenta);
-    let (dual, _) = ad::first_or_mixed(Fixed, &Generating { scheme, base }, &[0.0; N], &solution.z, false);
+    let (dual, _) = ad::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &solution.z, false);
     let evaluation = equations.evaluate(momenta, &dual);
-    let scale = momenta.iter().chain(dual.da.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
+    let scale = momenta.as_ref().iter().chain(Dm::entries(&dual.da)).fold(1.0f64, |m, x| m.max(x.abs()));
     let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;
     let next = evaluation.momenta_next;
-    let next_scale = next.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let next_scale = next.as_ref().iter().fold(1.0f64, |m, x| m.max(x.abs()));
     let checks = [
-        ("closed-form residual", evaluation.residual.amax(), 0.0, scale),
+        ("closed-form residual", Dm::amax(&evaluation.residual), 0.0, scale),
         ("value", solution.value, dual.value, dual.value.abs().max(1.0)),
     ];
-    let momenta = (0..N).map(|i| ("next momenta", solution.momenta_next[i], next[i], next_scale));
+    let momenta = (0..dim.n()).map(|i| ("next momenta", solution.momenta_next[i], next[i], next_scale));
     match checks.into_iter().chain(momenta).find(|&(_, c, d, s)| !closest(c, d, s)) {
         Some((what, compiled, dual, _)) => Err(CompileError::Disagrees { what, compiled, dual }),
         None => Ok(()),
@@ -317,14 +324,14 @@ fn check_linear<const N: usize>(
 }
 
 /// A scheme's generating function at a fixed base, as a function of the two blocks.
-struct Generating<'s, Sc, const N: usize> {
+struct Generating<'s, Sc, Dm: Dim> {
     scheme: &'s Sc,
-    base: &'s [f64; N],
+    base: &'s Dm::Array<f64>,
 }
 
-impl<Sc: Scheme<N>, const N: usize> PairFunction<Fixed<N>> for Generating<'_, Sc, N> {
+impl<Sc: Scheme<Dm>, Dm: Dim> PairFunction<Dm> for Generating<'_, Sc, Dm> {
     #[inline]
-    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
-        self.scheme.generating(self.base, a, b)
+    fn eval<D: Scalar>(&self, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D {
+        self.scheme.generating::<D, f64>(self.base, a, b)
     }
 }

@@ -91,7 +91,7 @@ const RESIDUALS_KEPT: f64 = 8.0;
 ///     let (q0, q1) = (base[0] + a[0], base[0] + b[0]);
 ///     (q1 - q0).powi(2) * 50.0 + ((q0 + q1) * 0.5).cos() * 0.1
 /// };
-/// let cost = CompileCost::estimate::<1>(&pair_programs(Fixed, ld, &[0.3], &[0.01]).unwrap());
+/// let cost = CompileCost::estimate(1, &pair_programs(Fixed, ld, &[0.3], &[0.01]).unwrap());
 /// assert!(cost.compile < 2e-3);
 /// if cfg!(feature = "jit") {
 ///     assert!(cost.pays(5000));
@@ -117,25 +117,26 @@ pub struct CompileCost {
 }
 
 impl CompileCost {
-    /// The estimate for `programs` (see the module documentation).
-    pub fn estimate<const N: usize>(programs: &PairPrograms) -> Self {
+    /// The estimate for `programs` of a pair function of `coordinates` coordinates per block, against
+    /// the dual numbers of a fixed dimension (see the module documentation).
+    pub fn estimate(coordinates: usize, programs: &PairPrograms) -> Self {
         let PairPrograms { first, mixed, operations, .. } = programs;
-        let n = N as f64;
+        let n = coordinates as f64;
         let compile = |p: &Program| {
             COMPILE_PER_PROGRAM
                 + COMPILE_PER_INSTRUCTION * p.instructions.len() as f64
                 + COMPILE_PER_LIVE * p.live_ranges() as f64
         };
         let residual_flops = 4.0 * n + 1.0;
-        let jacobian_flops = if N <= CROSSOVER {
+        let jacobian_flops = if coordinates <= CROSSOVER {
             3.0 * n * n + 4.0 * n + 1.0
         } else {
             let chunk = CHUNK as f64;
-            N.div_ceil(CHUNK) as f64 * (3.0 * chunk * n + 2.0 * (n + chunk) + 1.0)
+            coordinates.div_ceil(CHUNK) as f64 * (3.0 * chunk * n + 2.0 * (n + chunk) + 1.0)
         };
         let dual = |flops: f64| *operations as f64 * (DUAL_PER_OPERATION + DUAL_PER_FLOP * flops);
         let native = |p: &Program| NATIVE_PER_INSTRUCTION * p.instructions.len() as f64;
-        let (dual_step, native_step) = if dual_relative_cost(N) >= ACROSS_SOLVES {
+        let (dual_step, native_step) = if dual_relative_cost(coordinates) >= ACROSS_SOLVES {
             (RESIDUALS_KEPT * dual(residual_flops), RESIDUALS_KEPT * native(first))
         } else {
             (dual(jacobian_flops) + 2.0 * dual(residual_flops), native(mixed) + 2.0 * native(first))

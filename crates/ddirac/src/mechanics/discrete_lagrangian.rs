@@ -12,7 +12,8 @@
 //! velocity (δ1 − δ0)/h is formed from small offsets and never loses digits to a large base value
 //! (paper §6, retraction-compatible charts).
 
-use crate::dim::Fixed;
+use crate::dim::{Dim, Entry, Fixed};
+use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -104,7 +105,19 @@ impl<S> DiscreteLagrangian<S> {
     where
         S: System<N>,
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy,
+        B: Entry + Copy,
+    {
+        self.eval_in::<Fixed<N>, D, B>(base, d0, d1)
+    }
+
+    /// [`DiscreteLagrangian::eval_local`] in any dimension ([`Dim`]): the system is a [`Lagrangian`]
+    /// in it.
+    pub fn eval_in<Dm, D, B>(&self, base: &Dm::Array<B>, d0: &Dm::Array<D>, d1: &Dm::Array<D>) -> D
+    where
+        Dm: Dim,
+        S: Lagrangian<Dm>,
+        D: Scalar + std::ops::Add<B, Output = D>,
+        B: Entry + Copy,
     {
         let h = self.step;
         // In a trace that keeps it as an input, h is a number of the program; otherwise a constant.
@@ -118,18 +131,18 @@ impl<S> DiscreteLagrangian<S> {
             Some(h) => x * (h * weight),
             None => x * (weight * h),
         };
-        let mut v = *d1;
-        for (v, d0) in v.iter_mut().zip(d0) {
+        let mut v = d1.clone();
+        for (v, d0) in v.as_mut().iter_mut().zip(d0.as_ref()) {
             *v = over_h(*v - *d0);
         }
-        let at = |weight0: f64, weight1: f64| -> [D; N] {
-            let mut q = *d0;
-            for ((q, d1), base) in q.iter_mut().zip(d1).zip(base) {
+        let at = |weight0: f64, weight1: f64| -> Dm::Array<D> {
+            let mut q = d0.clone();
+            for ((q, d1), base) in q.as_mut().iter_mut().zip(d1.as_ref()).zip(base.as_ref()) {
                 *q = *q * weight0 + *d1 * weight1 + *base;
             }
             q
         };
-        let l = |q: &[D; N]| self.system.lagrangian(q, &v);
+        let l = |q: &Dm::Array<D>| Lagrangian::<Dm>::lagrangian(&self.system, q, &v);
         match self.rule {
             Rule::Left => times_h(l(&at(1.0, 0.0)), 1.0),
             Rule::Right => times_h(l(&at(0.0, 1.0)), 1.0),

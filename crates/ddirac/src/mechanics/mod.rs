@@ -4,4 +4,5 @@
 pub(crate) mod dirac;
 pub mod discrete_lagrangian;
 pub mod euler_lagrange;
+pub mod lagrangian;
 pub mod legendre;

@@ -32,6 +32,7 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
+use crate::dim::{Entry, Fixed};
 use crate::Scalar;
 use nalgebra::SVector;
 
@@ -60,7 +61,7 @@ impl<S> LagrangePoincareDirac<S> {
     where
         S: System<N>,
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy,
+        B: Entry + Copy,
     {
         let mut shifted = *a;
         for &gj in &self.reduction.split.group {
@@ -82,7 +83,7 @@ impl<S> LagrangePoincareDirac<S> {
     }
 }
 
-impl<S: System<N> + Clone, const N: usize> Scheme<N> for LagrangePoincareDirac<S> {
+impl<S: System<N> + Clone, const N: usize> Scheme<Fixed<N>> for LagrangePoincareDirac<S> {
     fn resized(&self, step: f64) -> Self {
         let ld = DiscreteLagrangian::new(self.reduction.ld.system.clone(), self.reduction.ld.rule, step);
         let reduction = ReducedLagrangian {
@@ -104,14 +105,14 @@ impl<S: System<N> + Clone, const N: usize> Scheme<N> for LagrangePoincareDirac<S
     fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
     where
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy,
+        B: Entry + Copy,
     {
         self.lhat(base, a, b)
     }
 
     /// (+): w_k + ∂l₊/∂x0 = 0 and ∂l₊/∂γ − μ_k = 0; (−): w_k + ∂l₋/∂x0 = 0 and μ_k + ∂l₋/∂γ = 0.
     /// w advances to ∂l±/∂x1, μ is conserved.
-    fn equations(&self) -> StepEquations<N> {
+    fn equations(&self) -> StepEquations<Fixed<N>> {
         let group = |i: usize| self.reduction.split.group.contains(&i);
         let sign = std::array::from_fn(|i| if group(i) && self.variant == Variant::Plus { -1.0 } else { 1.0 });
         StepEquations { sign, advances: std::array::from_fn(|i| !group(i)), eliminable: std::array::from_fn(group) }

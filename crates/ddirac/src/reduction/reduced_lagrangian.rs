@@ -11,6 +11,7 @@
 //! with γ the group argument (g1 of the paper for l₊, g0 for l₋).
 //!
 
+use crate::dim::Entry;
 use crate::Scalar;
 
 use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
@@ -95,7 +96,7 @@ impl<S> ReducedLagrangian<S> {
     where
         S: System<N>,
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy,
+        B: Entry + Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
             b[gj] = self.k_row(j, &b, &a).map_or(a[gj], |k| a[gj] + k);
@@ -109,7 +110,7 @@ impl<S> ReducedLagrangian<S> {
     where
         S: System<N>,
         D: Scalar + std::ops::Add<B, Output = D>,
-        B: Copy,
+        B: Entry + Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
             a[gj] = self.k_row(j, &a, &b).map_or(a[gj], |k| a[gj] + k);

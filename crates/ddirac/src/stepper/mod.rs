@@ -103,14 +103,14 @@ pub(crate) struct ChartStepper<S, const N: usize> {
 
 /// The schemes of a run's sub-steps with their step equations and derivatives: unreduced or reduced.
 enum Schemes<S, const N: usize> {
-    Unreduced(Stages<LagrangeDirac<S>, N>),
+    Unreduced(Stages<LagrangeDirac<S, Fixed<N>>, N>),
     Reduced(Stages<LagrangePoincareDirac<S>, N>),
 }
 
 struct Equipped<Sc, const N: usize> {
     scheme: Sc,
-    equations: StepEquations<N>,
-    derivatives: StepDerivatives<N>,
+    equations: StepEquations<Fixed<N>>,
+    derivatives: StepDerivatives<Fixed<N>>,
     /// The scheme momenta the derivatives were prepared with: a compiled closed-form step holds the
     /// conserved ones (μ) as constants.
     prepared: [f64; N],
@@ -169,7 +169,8 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Reduced(stages), path)
         } else {
-            let scheme = |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system.clone(), method.rule, step) });
+            let scheme =
+                |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system.clone(), method.rule, step), dim: Fixed });
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Unreduced(stages), path)
         };
@@ -461,7 +462,7 @@ struct FirstStep<const N: usize> {
     dq: [f64; N],
 }
 
-impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
+impl<Sc: Scheme<Fixed<N>>, const N: usize> Equipped<Sc, N> {
     /// The scheme of a sub-step γh with its equations and the derivatives of its generating function,
     /// prepared for `steps` evaluations at the `first` step (with the predictor's increment γ · dq).
     fn new(
@@ -491,7 +492,7 @@ impl<Sc: Scheme<N>, const N: usize> Equipped<Sc, N> {
 
     /// The scheme of another sub-step with `derivatives` shared from the scheme `other` prepared
     /// ([`StepDerivatives::for_step`]: the same programs with the other sub-step's h).
-    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<N>, first: &FirstStep<N>) -> Self {
+    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<Fixed<N>>, first: &FirstStep<N>) -> Self {
         let (equations, prepared) = (scheme.equations(), scheme.momenta_from_p(&first.p));
         Self { equations, scheme, derivatives, prepared, closed_form: true, renewable: other.renewable }
     }

@@ -122,7 +122,7 @@ impl<const N: usize> Record<N> {
 impl<const N: usize> Progress<N> {
     /// The row of step k; its energy goes into the record.
     #[inline]
-    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<N>, context: &Context<S, N>) -> OwnedRow<N> {
+    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<Fixed<N>>, context: &Context<S, N>) -> OwnedRow<N> {
         let p = scheme.p_from_momenta(&self.momenta);
         let mut momentum_map = [0.0; N];
         momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
@@ -145,7 +145,7 @@ impl<const N: usize> Progress<N> {
     /// for a sub-step γh of a step) and kept Jacobian `kept`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn cold(
-        scheme: &impl Scheme<N>,
+        scheme: &impl Scheme<Fixed<N>>,
         gammas: &[f64],
         kept: &newton::KeptJacobian<Fixed<N>>,
         start: (usize, [f64; N], [f64; N]),
@@ -189,7 +189,7 @@ impl<const N: usize> Progress<N> {
     /// but the kept Jacobians; an energy jump under [`JumpAction::Fail`] is an error after the step is
     /// taken.
     #[inline]
-    pub(super) fn step<S: System<N>, Sc: Scheme<N>>(
+    pub(super) fn step<S: System<N>, Sc: Scheme<Fixed<N>>>(
         &mut self,
         stages: &Stages<Sc, N>,
         context: &Context<S, N>,
@@ -230,7 +230,7 @@ impl<const N: usize> Progress<N> {
     /// increment. When no subdivision converges: the implausible solution if there is one (the energy
     /// watch then judges it), else `failure` with the subdivisions tried.
     #[cold]
-    fn subdivide<S: System<N>, Sc: Scheme<N>>(
+    fn subdivide<S: System<N>, Sc: Scheme<Fixed<N>>>(
         &mut self,
         stages: &Stages<Sc, N>,
         context: &Context<S, N>,
@@ -305,7 +305,7 @@ impl<const N: usize> Progress<N> {
 
     /// Solves step k as one step of the basic method.
     #[inline(always)]
-    fn take_basic<S: System<N>, Sc: Scheme<N>>(
+    fn take_basic<S: System<N>, Sc: Scheme<Fixed<N>>>(
         &mut self,
         e: &Equipped<Sc, N>,
         context: &Context<S, N>,
@@ -331,7 +331,7 @@ impl<const N: usize> Progress<N> {
 
     /// Solves step k as the sub-steps of a composition, each from where the one before ended, with
     /// the solver memory of each sub-step (`memory`, else the progress's own).
-    fn take_composed<S: System<N>, Sc: Scheme<N>>(
+    fn take_composed<S: System<N>, Sc: Scheme<Fixed<N>>>(
         &mut self,
         stages: &Stages<Sc, N>,
         memory: Option<&mut [StageMemory<N>]>,
@@ -529,7 +529,7 @@ fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
 /// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the
 /// predicted increment.
 #[cold]
-fn newton_failed<S: System<N>, Sc: Scheme<N>, const N: usize>(
+fn newton_failed<S: System<N>, Sc: Scheme<Fixed<N>>, const N: usize>(
     context: &Context<S, N>,
     k: usize,
     q: &[f64; N],
@@ -557,7 +557,7 @@ struct Solved<const N: usize> {
 /// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
 /// solution if it failed the test, or from the predictor.
 #[inline]
-fn solve_step<Sc: Scheme<N>, const N: usize>(
+fn solve_step<Sc: Scheme<Fixed<N>>, const N: usize>(
     e: &Equipped<Sc, N>,
     base: &[f64; N],
     momenta: &[f64; N],

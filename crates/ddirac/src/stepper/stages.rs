@@ -31,7 +31,7 @@ pub(super) struct Stages<Sc, const N: usize> {
     subdivided: Mutex<Vec<(usize, Arc<Stages<Sc, N>>)>>,
 }
 
-impl<Sc: Scheme<N>, const N: usize> Stages<Sc, N> {
+impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
     /// The stages of `method`'s composition for step `h` in a run of `steps` steps from `first`, and
     /// the derivative path of the first: `scheme(γh)` builds the scheme of a sub-step γh.
     pub(super) fn new(
