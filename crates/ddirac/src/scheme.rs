@@ -335,3 +335,94 @@ impl<Sc: Scheme<Dm>, Dm: Dim> PairFunction<Dm> for Generating<'_, Sc, Dm> {
         self.scheme.generating::<D, f64>(self.base, a, b)
     }
 }
+
+/// What the tests of the schemes share: a system seen in a dynamic dimension, and steps of a scheme
+/// in a fixed and a dynamic dimension held against each other and against the library's run.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::*;
+    use crate::dim::{Column, Dynamic};
+    use crate::mechanics::lagrangian::Lagrangian;
+    use crate::newton::{self, NewtonOptions};
+    use crate::System;
+
+    /// A system of a fixed dimension seen as one of a dimension chosen at run time.
+    #[derive(Clone)]
+    pub(crate) struct AsDynamic<S, const N: usize>(pub S);
+
+    impl<S: System<N>, const N: usize> Lagrangian<Dynamic> for AsDynamic<S, N> {
+        fn lagrangian<D: Scalar>(&self, q: &Vec<D>, v: &Vec<D>) -> D {
+            let array = |x: &Vec<D>| -> [D; N] { x.as_slice().try_into().expect("n coordinates") };
+            self.0.lagrangian(&array(q), &array(v))
+        }
+    }
+
+    /// `steps` steps of `scheme` from (q, p), each solved by classical Newton from z = 0: the
+    /// configurations and canonical momenta after each.
+    fn run<Dm: Dim>(
+        scheme: &impl Scheme<Dm>,
+        choice: Differentiation,
+        q: Dm::Array<f64>,
+        p: Dm::Array<f64>,
+        steps: usize,
+    ) -> Vec<(Vec<f64>, Vec<f64>)>
+    where
+        Dm::Vector: Column<Dim = Dm>,
+    {
+        let (dim, equations) = (Dm::of(&q), scheme.equations());
+        let (mut q, mut momenta) = (q, scheme.momenta_from_p(&p));
+        let zero = dim.array(|_| 0.0);
+        let (derivatives, _) = StepDerivatives::new(scheme, choice, steps, &scheme.base(&q), &zero, &momenta).unwrap();
+        let mut out = Vec::new();
+        for _ in 0..steps {
+            let base = scheme.base(&q);
+            let mut z = scheme.unknowns(&zero);
+            newton::solve(&mut z, 1.0, &NewtonOptions::default(), |z| {
+                let (first, mixed) = derivatives.first_or_mixed(scheme, &base, z, true);
+                (equations.evaluate(&momenta, &first).residual, mixed.unwrap())
+            })
+            .unwrap();
+            let (first, _) = derivatives.first_or_mixed(scheme, &base, &z, false);
+            momenta = equations.evaluate(&momenta, &first).momenta_next;
+            let dq = scheme.increment(&z);
+            q = dim.array(|i| q[i] + dq[i]);
+            out.push((q.as_ref().to_vec(), scheme.p_from_momenta(&momenta).as_ref().to_vec()));
+        }
+        out
+    }
+
+    /// `fixed` and `dynamic`, the same scheme of `system` in `Fixed<N>` and `Dynamic(N)`, take the same
+    /// `steps` steps from (q, p) bit for bit under `method.differentiation`, and the last agrees with
+    /// the library's run of `system` by `method` (its own predictor and Newton iterates, so within
+    /// the Newton tolerance, relative to max(1, |·|)).
+    pub(crate) fn assert_alike<S: System<N>, const N: usize>(
+        system: &S,
+        fixed: &impl Scheme<Fixed<N>>,
+        dynamic: &impl Scheme<Dynamic>,
+        method: &crate::Method,
+        q: [f64; N],
+        p: [f64; N],
+        steps: usize,
+    ) {
+        let choice = method.differentiation;
+        let a = run(fixed, choice, q, p, steps);
+        let b = run(dynamic, choice, q.to_vec(), p.to_vec(), steps);
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for (k, ((qa, pa), (qb, pb))) in a.iter().zip(&b).enumerate() {
+            assert_eq!(bits(qa), bits(qb), "{method:?}: q after step {}", k + 1);
+            assert_eq!(bits(pa), bits(pb), "{method:?}: p after step {}", k + 1);
+        }
+        let problem = crate::Problem::with_momentum(0.01, steps, q, p);
+        let method =
+            crate::Method { newton: NewtonOptions { reuse_jacobian: false, ..method.newton }, ..method.clone() };
+        let options = crate::OutputOptions { every: 1, wrap_angles: false };
+        let solution = crate::solve(system, &problem, &method, &options).unwrap();
+        let (last_q, last_p) = (solution.q.last().unwrap(), solution.p.last().unwrap());
+        let (qb, pb) = b.last().unwrap();
+        let close = |x: f64, y: f64| (x - y).abs() < 1e-11 * x.abs().max(1.0);
+        for i in 0..N {
+            assert!(close(last_q[i], qb[i]), "{method:?}: q[{i}] {} against {}", last_q[i], qb[i]);
+            assert!(close(last_p[i], pb[i]), "{method:?}: p[{i}] {} against {}", last_p[i], pb[i]);
+        }
+    }
+}

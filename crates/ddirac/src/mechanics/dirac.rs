@@ -69,55 +69,9 @@ impl<S: Lagrangian<Dm> + Clone, Dm: Dim> Scheme<Dm> for LagrangeDirac<S, Dm> {
 mod tests {
     use super::*;
     use crate::dim::{Dynamic, Fixed};
-    use crate::newton::{self, NewtonOptions};
-    use crate::scheme::StepDerivatives;
+    use crate::scheme::testing::{assert_alike, AsDynamic};
     use crate::systems::PendulumChain;
-    use crate::{Differentiation, Rule, System};
-
-    /// A system of a fixed dimension seen as one of a dimension chosen at run time.
-    #[derive(Clone)]
-    struct AsDynamic<S, const N: usize>(S);
-
-    impl<S: System<N>, const N: usize> Lagrangian<Dynamic> for AsDynamic<S, N> {
-        fn lagrangian<D: Scalar>(&self, q: &Vec<D>, v: &Vec<D>) -> D {
-            let array = |x: &Vec<D>| -> [D; N] { x.as_slice().try_into().expect("n coordinates") };
-            self.0.lagrangian(&array(q), &array(v))
-        }
-    }
-
-    /// `steps` steps of the scheme from (q, p), each solved by classical Newton from z = 0: the
-    /// configurations and momenta after each.
-    fn run<Dm: Dim, S: Lagrangian<Dm> + Clone>(
-        scheme: &LagrangeDirac<S, Dm>,
-        choice: Differentiation,
-        q: Dm::Array<f64>,
-        p: Dm::Array<f64>,
-        steps: usize,
-    ) -> Vec<(Vec<f64>, Vec<f64>)>
-    where
-        Dm::Vector: crate::dim::Column<Dim = Dm>,
-    {
-        let (dim, equations) = (scheme.dim, scheme.equations());
-        let (mut q, mut momenta) = (q, scheme.momenta_from_p(&p));
-        let zero = dim.array(|_| 0.0);
-        let (derivatives, _) = StepDerivatives::new(scheme, choice, steps, &q, &zero, &momenta).unwrap();
-        let mut out = Vec::new();
-        for _ in 0..steps {
-            let base = scheme.base(&q);
-            let mut z = scheme.unknowns(&zero);
-            newton::solve(&mut z, 1.0, &NewtonOptions::default(), |z| {
-                let (first, mixed) = derivatives.first_or_mixed(scheme, &base, z, true);
-                (equations.evaluate(&momenta, &first).residual, mixed.unwrap())
-            })
-            .unwrap();
-            let (first, _) = derivatives.first_or_mixed(scheme, &base, &z, false);
-            momenta = equations.evaluate(&momenta, &first).momenta_next;
-            let dq = scheme.increment(&z);
-            q = dim.array(|i| q[i] + dq[i]);
-            out.push((q.as_ref().to_vec(), scheme.p_from_momenta(&momenta).as_ref().to_vec()));
-        }
-        out
-    }
+    use crate::{Differentiation, Rule};
 
     #[test]
     fn unreduced_steps_are_alike_in_a_fixed_and_a_dynamic_dimension() {
@@ -132,34 +86,8 @@ mod tests {
                     ld: DiscreteLagrangian::new(AsDynamic::<_, N>(chain.clone()), rule, 0.01),
                     dim: Dynamic(N),
                 };
-                let a = run(&fixed, choice, q, p, 30);
-                let b = run(&dynamic, choice, q.to_vec(), p.to_vec(), 30);
-                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-                for (k, ((qa, pa), (qb, pb))) in a.iter().zip(&b).enumerate() {
-                    assert_eq!(bits(qa), bits(qb), "{choice:?} {rule:?}: q after step {}", k + 1);
-                    assert_eq!(bits(pa), bits(pb), "{choice:?} {rule:?}: p after step {}", k + 1);
-                }
-                // And the steps are the library's: against a run of the chain (its own predictor
-                // and Newton iterates, so within the Newton tolerance).
-                let problem = crate::Problem::with_momentum(0.01, 30, q, p);
                 let method = crate::Method { rule, differentiation: choice, ..crate::Method::default() };
-                let solution = crate::solve(&chain, &problem, &method, &crate::OutputOptions::default()).unwrap();
-                let (last_q, last_p) = (solution.q.last().unwrap(), solution.p.last().unwrap());
-                let (qb, pb) = b.last().unwrap();
-                for i in 0..N {
-                    assert!(
-                        (last_q[i] - qb[i]).abs() < 1e-11,
-                        "{choice:?} {rule:?}: q[{i}] {} against {}",
-                        last_q[i],
-                        qb[i]
-                    );
-                    assert!(
-                        (last_p[i] - pb[i]).abs() < 1e-11,
-                        "{choice:?} {rule:?}: p[{i}] {} against {}",
-                        last_p[i],
-                        pb[i]
-                    );
-                }
+                assert_alike(&chain, &fixed, &dynamic, &method, q, p, 30);
             }
         }
     }

@@ -32,44 +32,46 @@
 //! l̂(a, b) = l(x_k + a_x, x_k + b_x, b_γ + a_γ) at a = 0: ∂l̂/∂a gives (∂l/∂x0, ∂l/∂γ), and the
 //! mixed block ∂²l̂/∂a∂b is the Jacobian with respect to z = b.
 
-use crate::dim::{Entry, Fixed};
+use crate::dim::{Dim, Entry};
+use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
-use nalgebra::SVector;
 
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::reduction::trivialization::{lambda_hat, lambda_hat_inv};
 use crate::scheme::{Scheme, StepEquations};
-use crate::{DiscreteLagrangian, System, Variant};
+use crate::{DiscreteLagrangian, Variant};
 
 /// The reduced scheme of one variant, on the reduced Lagrangians l± of [`ReducedLagrangian`].
-pub(crate) struct LagrangePoincareDirac<S> {
+pub(crate) struct LagrangePoincareDirac<S, Dm> {
+    /// The number of coordinates.
+    dim: Dm,
     reduction: ReducedLagrangian<S>,
     variant: Variant,
     /// Whether the connection K is zero (then K(x1 − x0) and Kᵀμ vanish, and λ̂_d is the identity).
     flat: bool,
 }
 
-impl<S> LagrangePoincareDirac<S> {
-    /// The scheme of `variant` on the reduced Lagrangians of `reduction`.
-    pub(crate) fn new(reduction: ReducedLagrangian<S>, variant: Variant) -> Self {
+impl<S, Dm: Dim> LagrangePoincareDirac<S, Dm> {
+    /// The scheme of `variant` on the reduced Lagrangians of `reduction`, for `dim` coordinates.
+    pub(crate) fn new(dim: Dm, reduction: ReducedLagrangian<S>, variant: Variant) -> Self {
         let flat = reduction.connection.is_zero();
-        Self { reduction, variant, flat }
+        Self { dim, reduction, variant, flat }
     }
 
     /// l̂(a, b): the reduced Lagrangian l± with x0 = x_k + a_x, x1 = x_k + b_x, γ = b_γ + a_γ.
-    pub(crate) fn lhat<D, B, const N: usize>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    pub(crate) fn lhat<D, B>(&self, base: &Dm::Array<B>, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D
     where
-        S: System<N>,
+        S: Lagrangian<Dm>,
         D: Scalar + std::ops::Add<B, Output = D>,
         B: Entry + Copy,
     {
-        let mut shifted = *a;
+        let mut shifted = a.clone();
         for &gj in &self.reduction.split.group {
             shifted[gj] = a[gj] + b[gj];
         }
         match self.variant {
-            Variant::Plus => self.reduction.l_plus_in_place(base, shifted, *b),
-            Variant::Minus => self.reduction.l_minus_in_place(base, shifted, *b),
+            Variant::Plus => self.reduction.l_plus_in_place::<Dm, D, B>(base, shifted, b.clone()),
+            Variant::Minus => self.reduction.l_minus_in_place::<Dm, D, B>(base, shifted, b.clone()),
         }
     }
 
@@ -83,7 +85,7 @@ impl<S> LagrangePoincareDirac<S> {
     }
 }
 
-impl<S: System<N> + Clone, const N: usize> Scheme<Fixed<N>> for LagrangePoincareDirac<S> {
+impl<S: Lagrangian<Dm> + Clone, Dm: Dim> Scheme<Dm> for LagrangePoincareDirac<S, Dm> {
     fn resized(&self, step: f64) -> Self {
         let ld = DiscreteLagrangian::new(self.reduction.ld.system.clone(), self.reduction.ld.rule, step);
         let reduction = ReducedLagrangian {
@@ -91,50 +93,50 @@ impl<S: System<N> + Clone, const N: usize> Scheme<Fixed<N>> for LagrangePoincare
             split: self.reduction.split.clone(),
             connection: self.reduction.connection.clone(),
         };
-        Self { reduction, variant: self.variant, flat: self.flat }
+        Self { dim: self.dim, reduction, variant: self.variant, flat: self.flat }
     }
 
-    fn base(&self, q: &[f64; N]) -> [f64; N] {
-        let mut base = *q;
+    fn base(&self, q: &Dm::Array<f64>) -> Dm::Array<f64> {
+        let mut base = q.clone();
         for &gj in &self.reduction.split.group {
             base[gj] = 0.0;
         }
         base
     }
 
-    fn generating<D, B>(&self, base: &[B; N], a: &[D; N], b: &[D; N]) -> D
+    fn generating<D, B>(&self, base: &Dm::Array<B>, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D
     where
         D: Scalar + std::ops::Add<B, Output = D>,
         B: Entry + Copy,
     {
-        self.lhat(base, a, b)
+        self.lhat::<D, B>(base, a, b)
     }
 
     /// (+): w_k + ∂l₊/∂x0 = 0 and ∂l₊/∂γ − μ_k = 0; (−): w_k + ∂l₋/∂x0 = 0 and μ_k + ∂l₋/∂γ = 0.
     /// w advances to ∂l±/∂x1, μ is conserved.
-    fn equations(&self) -> StepEquations<Fixed<N>> {
+    fn equations(&self) -> StepEquations<Dm> {
         let group = |i: usize| self.reduction.split.group.contains(&i);
-        let sign = std::array::from_fn(|i| if group(i) && self.variant == Variant::Plus { -1.0 } else { 1.0 });
-        StepEquations { sign, advances: std::array::from_fn(|i| !group(i)), eliminable: std::array::from_fn(group) }
+        let sign = self.dim.array(|i| if group(i) && self.variant == Variant::Plus { -1.0 } else { 1.0 });
+        StepEquations { sign, advances: self.dim.array(|i| !group(i)), eliminable: self.dim.array(group) }
     }
 
     #[inline]
-    fn increment(&self, z: &SVector<f64, N>) -> [f64; N] {
-        let mut dq: [f64; N] = (*z).into();
+    fn increment(&self, z: &Dm::Vector) -> Dm::Array<f64> {
+        let mut dq = self.dim.array(|i| z[i]);
         for (j, &gj) in self.reduction.split.group.iter().enumerate() {
             let gamma = match self.variant {
                 Variant::Plus => z[gj],
                 Variant::Minus => -z[gj],
             };
-            dq[gj] = gamma + self.k_dx(j, z.as_slice());
+            dq[gj] = gamma + self.k_dx(j, Dm::entries(z));
         }
         dq
     }
 
-    fn unknowns(&self, dq: &[f64; N]) -> SVector<f64, N> {
-        let mut z = SVector::from(*dq);
+    fn unknowns(&self, dq: &Dm::Array<f64>) -> Dm::Vector {
+        let mut z = self.dim.vector(|i| dq[i]);
         for (j, &gj) in self.reduction.split.group.iter().enumerate() {
-            let gamma = dq[gj] - self.k_dx(j, dq);
+            let gamma = dq[gj] - self.k_dx(j, dq.as_ref());
             z[gj] = match self.variant {
                 Variant::Plus => gamma,
                 Variant::Minus => -gamma,
@@ -144,19 +146,64 @@ impl<S: System<N> + Clone, const N: usize> Scheme<Fixed<N>> for LagrangePoincare
     }
 
     /// (w, μ) = λ̂_d(q, p).
-    fn momenta_from_p(&self, p: &[f64; N]) -> [f64; N] {
+    fn momenta_from_p(&self, p: &Dm::Array<f64>) -> Dm::Array<f64> {
         if self.flat {
-            return *p;
+            return p.clone();
         }
-        lambda_hat(&self.reduction.connection, &self.reduction.split, p)
+        lambda_hat::<Dm>(&self.reduction.connection, &self.reduction.split, p)
     }
 
     /// p = λ̂_d⁻¹(q, w, μ).
     #[inline]
-    fn p_from_momenta(&self, wm: &[f64; N]) -> [f64; N] {
+    fn p_from_momenta(&self, wm: &Dm::Array<f64>) -> Dm::Array<f64> {
         if self.flat {
-            return *wm;
+            return wm.clone();
         }
-        lambda_hat_inv(&self.reduction.connection, &self.reduction.split, wm)
+        lambda_hat_inv::<Dm>(&self.reduction.connection, &self.reduction.split, wm)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dim::{Dynamic, Fixed};
+    use crate::scheme::testing::{assert_alike, AsDynamic};
+    use crate::systems::DoubleSphericalPendulum;
+    use crate::{Connection, Differentiation, Method, Rule};
+
+    #[test]
+    fn reduced_steps_are_alike_in_a_fixed_and_a_dynamic_dimension() {
+        const N: usize = 4;
+        let system = DoubleSphericalPendulum::default();
+        let (q, p) = ([0.0, 0.6, 0.2, 0.9], [0.3, 0.1, -0.2, 0.05]);
+        // The flat connection, and one that couples the group angle to all three shape angles.
+        for connection in [Connection::zero(3, 1), Connection::new(&[vec![0.3, -0.2, 0.1]]).unwrap()] {
+            for variant in [Variant::Plus, Variant::Minus] {
+                for choice in [Differentiation::Dual, Differentiation::Compiled] {
+                    let reduced =
+                        |step| ReducedLagrangian::new(system.clone(), Rule::Midpoint, step, connection.clone());
+                    let fixed = LagrangePoincareDirac::new(Fixed::<N>, reduced(0.01).unwrap(), variant);
+                    let dynamic = ReducedLagrangian::new(system.clone(), Rule::Midpoint, 0.01, connection.clone())
+                        .map(|r| ReducedLagrangian {
+                            ld: DiscreteLagrangian::new(AsDynamic::<_, N>(r.ld.system), r.ld.rule, r.ld.step),
+                            split: r.split,
+                            connection: r.connection,
+                        })
+                        .unwrap();
+                    let dynamic = LagrangePoincareDirac::new(Dynamic(N), dynamic, variant);
+                    let method = Method {
+                        rule: Rule::Midpoint,
+                        reduced: true,
+                        variant,
+                        connection: Some(connection.clone()),
+                        differentiation: choice,
+                        // The steps of the main chart (the library would move to another near a pole).
+                        atlas: false,
+                        ..Method::default()
+                    };
+                    assert_alike(&system, &fixed, &dynamic, &method, q, p, 30);
+                }
+            }
+        }
     }
 }

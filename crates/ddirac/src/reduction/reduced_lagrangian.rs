@@ -11,7 +11,8 @@
 //! with γ the group argument (g1 of the paper for l₊, g0 for l₋).
 //!
 
-use crate::dim::Entry;
+use crate::dim::{Dim, Entry, Fixed};
+use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
 
 use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
@@ -72,7 +73,7 @@ impl<S> ReducedLagrangian<S> {
         self.check_sizes(&[("x0", x0.len(), true), ("x1", x1.len(), true), ("gamma", gamma.len(), false)])?;
         let zero = D::from(0.0);
         let (a, b) = (self.pack(x0, gamma, zero), self.pack(x1, &[], zero));
-        Ok(self.l_plus_in_place(&[0.0f64; N], a, b))
+        Ok(self.l_plus_in_place::<Fixed<N>, D, f64>(&[0.0f64; N], a, b))
     }
 
     /// l₋(x0, γ, x1) = L_d((x0, γ + h_d^0(x1, x0)), (x1, 0)) (eq:reducedlagrangianlocalminus), generic
@@ -85,43 +86,45 @@ impl<S> ReducedLagrangian<S> {
         self.check_sizes(&[("x0", x0.len(), true), ("x1", x1.len(), true), ("gamma", gamma.len(), false)])?;
         let zero = D::from(0.0);
         let (a, b) = (self.pack(x0, gamma, zero), self.pack(x1, &[], zero));
-        Ok(self.l_minus_in_place(&[0.0f64; N], a, b))
+        Ok(self.l_minus_in_place::<Fixed<N>, D, f64>(&[0.0f64; N], a, b))
     }
 
     /// l₊ on packed blocks a = (x0 at the shape positions, γ at the group positions), b = (x1, ·), in
     /// the chart centred at `base` (x0 = base + a_x, x1 = base + b_x; the group entries of `base` are the
     /// chart's g = 0), see [`DiscreteLagrangian::eval_local`]; the group entries of b are not read. The
     /// blocks may be overwritten (no copies of dual numbers).
-    pub(crate) fn l_plus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
+    pub(crate) fn l_plus_in_place<Dm, D, B>(&self, base: &Dm::Array<B>, mut a: Dm::Array<D>, mut b: Dm::Array<D>) -> D
     where
-        S: System<N>,
+        Dm: Dim,
+        S: Lagrangian<Dm>,
         D: Scalar + std::ops::Add<B, Output = D>,
         B: Entry + Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
-            b[gj] = self.k_row(j, &b, &a).map_or(a[gj], |k| a[gj] + k);
+            b[gj] = self.k_row(j, b.as_ref(), a.as_ref()).map_or(a[gj], |k| a[gj] + k);
             a[gj] = D::from(0.0);
         }
-        self.ld.eval_local(base, &a, &b)
+        self.ld.eval_in::<Dm, D, B>(base, &a, &b)
     }
 
     /// l₋ on packed blocks as for [`Self::l_plus_in_place`], in the chart centred at `base`.
-    pub(crate) fn l_minus_in_place<D, B, const N: usize>(&self, base: &[B; N], mut a: [D; N], mut b: [D; N]) -> D
+    pub(crate) fn l_minus_in_place<Dm, D, B>(&self, base: &Dm::Array<B>, mut a: Dm::Array<D>, mut b: Dm::Array<D>) -> D
     where
-        S: System<N>,
+        Dm: Dim,
+        S: Lagrangian<Dm>,
         D: Scalar + std::ops::Add<B, Output = D>,
         B: Entry + Copy,
     {
         for (j, &gj) in self.split.group.iter().enumerate() {
-            a[gj] = self.k_row(j, &a, &b).map_or(a[gj], |k| a[gj] + k);
+            a[gj] = self.k_row(j, a.as_ref(), b.as_ref()).map_or(a[gj], |k| a[gj] + k);
             b[gj] = D::from(0.0);
         }
-        self.ld.eval_local(base, &a, &b)
+        self.ld.eval_in::<Dm, D, B>(base, &a, &b)
     }
 
     /// Row j of K (u − v) = h_d^0(v, u) on the shape entries of packed blocks; `None` when row j of K
     /// is zero.
-    fn k_row<D: Scalar, const N: usize>(&self, j: usize, u: &[D; N], v: &[D; N]) -> Option<D> {
+    fn k_row<D: Scalar>(&self, j: usize, u: &[D], v: &[D]) -> Option<D> {
         let shape = &self.split.shape;
         self.connection.row_apply(j, |i| u[shape[i]] - v[shape[i]])
     }

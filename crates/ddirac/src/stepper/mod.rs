@@ -104,7 +104,7 @@ pub(crate) struct ChartStepper<S, const N: usize> {
 /// The schemes of a run's sub-steps with their step equations and derivatives: unreduced or reduced.
 enum Schemes<S, const N: usize> {
     Unreduced(Stages<LagrangeDirac<S, Fixed<N>>, N>),
-    Reduced(Stages<LagrangePoincareDirac<S>, N>),
+    Reduced(Stages<LagrangePoincareDirac<S, Fixed<N>>, N>),
 }
 
 struct Equipped<Sc, const N: usize> {
@@ -164,7 +164,7 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
         let (schemes, derivative_path) = if method.reduced {
             let scheme = |step| -> Result<_, Error> {
                 let reduction = ReducedLagrangian::new(system.clone(), method.rule, step, setup.connection.clone())?;
-                Ok(LagrangePoincareDirac::new(reduction, method.variant))
+                Ok(LagrangePoincareDirac::new(Fixed, reduction, method.variant))
             };
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Reduced(stages), path)
