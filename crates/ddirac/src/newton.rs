@@ -183,7 +183,8 @@ pub fn dual_relative_cost(n: usize) -> usize {
 /// instructions, measured for n = 4) against the program and a solve (about 10 n²).
 ///
 /// ```
-/// assert_eq!(ddirac::newton::compiled_relative_cost(4, 100, 400), 4);
+/// // (400 + 15 · 4³) / (100 + 10 · 4²) = 1360 / 260
+/// assert_eq!(ddirac::newton::compiled_relative_cost(4, 100, 400), 5);
 /// ```
 pub fn compiled_relative_cost(n: usize, residual: usize, jacobian: usize) -> usize {
     (jacobian + 15 * n * n * n) / (residual + 10 * n * n).max(1)
