@@ -4,7 +4,8 @@
 //! not determined by the momentum; [`velocity`] then returns one velocity compatible with it, and H
 //! does not depend on the choice as long as p lies on the primary constraint p = ∂L/∂v.
 
-use crate::dim::Fixed;
+use crate::dim::{Dim, Fixed};
+use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -14,20 +15,20 @@ use crate::System;
 
 /// L(q, v + a + b) as a function of (a, b): at a = b = 0 its a-gradient is ∂L/∂v and its mixed
 /// block is ∂²L/∂v², so the dual numbers of [`crate::ad`] give both.
-struct AtVelocity<'a, S, const N: usize> {
+struct AtVelocity<'a, S, Dm: Dim> {
     system: &'a S,
-    q: &'a [f64; N],
-    v: &'a [f64; N],
+    q: &'a Dm::Array<f64>,
+    v: &'a Dm::Array<f64>,
 }
 
-impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for AtVelocity<'_, S, N> {
-    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
-        let q = self.q.map(D::from);
-        let mut v = *a;
-        for ((v, b), v0) in v.iter_mut().zip(b).zip(self.v) {
+impl<S: Lagrangian<Dm>, Dm: Dim> PairFunction<Dm> for AtVelocity<'_, S, Dm> {
+    fn eval<D: Scalar>(&self, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D {
+        let q = Dm::of(a).array(|i| D::from(self.q[i]));
+        let mut v = a.clone();
+        for ((v, b), v0) in v.as_mut().iter_mut().zip(b.as_ref()).zip(self.v.as_ref()) {
             *v = *v + *b + *v0;
         }
-        self.system.lagrangian(&q, &v)
+        Lagrangian::<Dm>::lagrangian(self.system, &q, &v)
     }
 }
 
@@ -39,7 +40,19 @@ impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for AtVelocity<'_, S, 
 /// assert_eq!(p, [1.0, 0.0, 1.0, 1.0]);
 /// ```
 pub fn momentum<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> [f64; N] {
-    ad::first(Fixed, &AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]).da.into()
+    momentum_in(Fixed, system, q, v)
+}
+
+/// [`momentum`] in any dimension.
+pub(crate) fn momentum_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+) -> Dm::Array<f64> {
+    let zero = dim.array(|_| 0.0);
+    let da = ad::first(dim, &AtVelocity { system, q, v }, &zero, &zero).da;
+    dim.array(|i| da[i])
 }
 
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
@@ -84,7 +97,18 @@ pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
     q: &[f64; N],
     v: &[f64; N],
 ) -> (f64, SVector<f64, N>, SMatrix<f64, N, N>) {
-    let d = ad::mixed(Fixed, &AtVelocity { system, q, v }, &[0.0; N], &[0.0; N]);
+    velocity_hessian_in(Fixed, system, q, v)
+}
+
+/// [`velocity_hessian`] in any dimension.
+pub(crate) fn velocity_hessian_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+) -> (f64, Dm::Vector, Dm::Matrix) {
+    let zero = dim.array(|_| 0.0);
+    let d = ad::mixed(dim, &AtVelocity { system, q, v }, &zero, &zero);
     (d.value, d.da, d.dadb)
 }
 
@@ -101,26 +125,39 @@ pub const ROUND_OFF: f64 = 1e-13;
 /// undetermined velocity components stay 0. Returns the velocity and the remaining mismatch
 /// ‖∂L/∂v − p‖∞.
 pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N]) -> ([f64; N], f64) {
-    let p = SVector::from(*p);
-    let mut v = SVector::<f64, N>::zeros();
-    let mut previous = v;
+    velocity_in(Fixed, system, q, p)
+}
+
+/// [`velocity`] in any dimension.
+pub(crate) fn velocity_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    p: &Dm::Array<f64>,
+) -> (Dm::Array<f64>, f64) {
+    let array = |v: &Dm::Vector| dim.array(|i| v[i]);
+    let mismatch_at = |grad: &Dm::Vector| dim.vector(|i| grad[i] - p[i]);
+    let p_scale = p.as_ref().iter().fold(0.0, |m: f64, x| x.abs().max(m));
+    let mut v = dim.zeros();
+    let mut previous = v.clone();
     let mut mismatch = f64::INFINITY;
-    let mut lu: Option<Factorization<Fixed<N>>> = None;
+    let mut lu: Option<Factorization<Dm>> = None;
     // Whether ∂²L/∂v² was evaluated at this iterate, and whether the correction that led to it used
     // one evaluated at the iterate it started from.
     let (mut fresh, mut fresh_correction) = (false, false);
     for _ in 0..40 {
         let grad = if lu.is_none() {
-            let (_, grad, hess) = velocity_hessian(system, q, &v.into());
-            (lu, fresh) = (Factorization::new(Fixed, &hess, 1e-10), true);
+            let (_, grad, hess) = velocity_hessian_in(dim, system, q, &array(&v));
+            (lu, fresh) = (Factorization::new(dim, &hess, 1e-10), true);
             grad
         } else {
-            SVector::from(momentum(system, q, &v.into()))
+            let p = momentum_in(dim, system, q, &array(&v));
+            dim.vector(|i| p[i])
         };
-        let r = grad - p;
-        let new_mismatch = r.amax();
+        let r = mismatch_at(&grad);
+        let new_mismatch = Dm::amax(&r);
         if !new_mismatch.is_finite() || new_mismatch >= mismatch {
-            let scale = p.amax() + lu.as_ref().map_or(0.0, Factorization::scale) * previous.amax();
+            let scale = p_scale + lu.as_ref().map_or(0.0, Factorization::scale) * Dm::amax(&previous);
             if fresh || fresh_correction || mismatch <= ROUND_OFF * scale {
                 // Nothing left to gain (a fresh ∂²L/∂v² would only move v within round-off): the
                 // best iterate is the one before.
@@ -133,15 +170,16 @@ pub fn velocity<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64
         }
         mismatch = new_mismatch;
         let Some(delta) = lu.as_ref().map(|lu| lu.solve(&r)) else { break };
-        previous = v;
-        v -= delta;
+        previous = v.clone();
+        v -= &delta;
         (fresh_correction, fresh) = (fresh, false);
-        if delta.amax() <= 1e-15 * (1.0 + v.amax()) {
-            mismatch = (SVector::from(momentum(system, q, &v.into())) - p).amax();
+        if Dm::amax(&delta) <= 1e-15 * (1.0 + Dm::amax(&v)) {
+            let p = momentum_in(dim, system, q, &array(&v));
+            mismatch = Dm::amax(&mismatch_at(&dim.vector(|i| p[i])));
             break;
         }
     }
-    (v.into(), mismatch)
+    (array(&v), mismatch)
 }
 
 /// The Hamiltonian H(q, p) = ⟨p, v⟩ − L(q, v) with v from [`velocity`].
@@ -156,4 +194,40 @@ pub fn hamiltonian<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[
     let (v, _) = velocity(system, q, p);
     let pv: f64 = p.iter().zip(&v).map(|(a, b)| a * b).sum();
     pv - system.lagrangian(q, &v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dim::Dynamic;
+    use crate::scheme::testing::AsDynamic;
+    use crate::systems::{DoubleSphericalPendulum, PendulumChain};
+
+    fn bits(x: &[f64]) -> Vec<u64> {
+        x.iter().map(|v| v.to_bits()).collect()
+    }
+
+    fn alike<S: System<N> + Clone, const N: usize>(system: &S, q: [f64; N], v: [f64; N]) {
+        let dynamic = AsDynamic::<_, N>(system.clone());
+        let (qd, vd) = (q.to_vec(), v.to_vec());
+        assert_eq!(bits(&momentum(system, &q, &v)), bits(&momentum_in(Dynamic(N), &dynamic, &qd, &vd)));
+        let (l, grad, hess) = velocity_hessian(system, &q, &v);
+        let (dl, dgrad, dhess) = velocity_hessian_in(Dynamic(N), &dynamic, &qd, &vd);
+        assert_eq!(
+            (l.to_bits(), bits(grad.as_slice()), bits(hess.as_slice())),
+            (dl.to_bits(), bits(dgrad.as_slice()), bits(dhess.as_slice()))
+        );
+        // The Legendre inversion from the momentum at v: the same iterates, back to v.
+        let p = momentum(system, &q, &v);
+        let (w, mismatch) = velocity(system, &q, &p);
+        let (dw, dmismatch) = velocity_in(Dynamic(N), &dynamic, &qd, &p.to_vec());
+        assert_eq!((bits(&w), mismatch.to_bits()), (bits(&dw), dmismatch.to_bits()));
+        assert!(w.iter().zip(&v).all(|(a, b)| (a - b).abs() < 1e-12), "{w:?} against {v:?}");
+    }
+
+    #[test]
+    fn the_legendre_transform_is_alike_in_a_fixed_and_a_dynamic_dimension() {
+        alike(&PendulumChain::<5>::default(), [0.3, -0.2, 0.5, 0.1, 0.7], [0.4, 0.1, -0.3, 0.2, 0.05]);
+        alike(&DoubleSphericalPendulum::default(), [0.2, 0.7, -0.4, 1.1], [0.3, -0.1, 0.2, 0.4]);
+    }
 }
