@@ -359,7 +359,7 @@ pub(crate) mod testing {
 
     /// `steps` steps of `scheme` from (q, p), each solved by classical Newton from z = 0: the
     /// configurations and canonical momenta after each.
-    fn run<Dm: Dim>(
+    pub(crate) fn run<Dm: Dim>(
         scheme: &impl Scheme<Dm>,
         choice: Differentiation,
         q: Dm::Array<f64>,

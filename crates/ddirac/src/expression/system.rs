@@ -87,16 +87,16 @@ pub struct ExpressionSystem<const N: usize> {
 /// value of them; and the parameters' values. The folded Lagrangian is the same graph with the
 /// parameters substituted as constants.
 #[derive(Debug, Clone, PartialEq)]
-struct OpenLagrangian {
+pub(super) struct OpenLagrangian {
     program: CompiledExpression,
     parameters: Vec<f64>,
 }
 
 /// A checked and compiled spec, before its dimension is fixed.
-struct Compiled {
-    coordinates: Vec<Coordinate>,
-    lagrangian: CompiledExpression,
-    open: OpenLagrangian,
+pub(super) struct Compiled {
+    pub(super) coordinates: Vec<Coordinate>,
+    pub(super) lagrangian: CompiledExpression,
+    pub(super) open: OpenLagrangian,
     exact: Vec<Option<CompiledExpression>>,
     atlas: Option<super::atlas::TextAtlas>,
 }
@@ -146,18 +146,8 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
     /// With the parameters folded in, or, in a trace that keeps them as runtime inputs, read from
     /// those.
     fn lagrangian<D: crate::Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
-        let (parameters, n) = (&self.open.parameters, self.own);
-        let runtime = |k: usize| D::runtime_input(crate::RuntimeInput::Parameter(k), parameters[k]);
-        let own = if !parameters.is_empty() && runtime(0).is_some() {
-            let values: Vec<D> = (0..parameters.len()).map(|k| runtime(k).unwrap_or(D::from(parameters[k]))).collect();
-            self.open.program.eval_with(|i| match i {
-                _ if i < n => q[i],
-                _ if i < 2 * n => v[i - n],
-                _ => values[i - 2 * n],
-            })
-        } else {
-            self.lagrangian.eval_with(|i| if i < n { q[i] } else { v[i - n] })
-        };
+        let n = self.own;
+        let own = own_lagrangian(&self.lagrangian, &self.open, n, q, v);
         if n < N {
             own + crate::padding::lagrangian(v, n, self.padding_mass)
         } else {
@@ -269,11 +259,35 @@ impl ExpressionSpec {
     }
 }
 
+/// L(q, v) of the spec's own `n` coordinates (the first n entries of `q` and `v`): with the
+/// parameters folded in, or, in a trace that keeps them as runtime inputs, read from those.
+#[inline(always)]
+pub(super) fn own_lagrangian<D: crate::Scalar>(
+    lagrangian: &CompiledExpression,
+    open: &OpenLagrangian,
+    n: usize,
+    q: &[D],
+    v: &[D],
+) -> D {
+    let parameters = &open.parameters;
+    let runtime = |k: usize| D::runtime_input(crate::RuntimeInput::Parameter(k), parameters[k]);
+    if !parameters.is_empty() && runtime(0).is_some() {
+        let values: Vec<D> = (0..parameters.len()).map(|k| runtime(k).unwrap_or(D::from(parameters[k]))).collect();
+        open.program.eval_with(|i| match i {
+            _ if i < n => q[i],
+            _ if i < 2 * n => v[i - n],
+            _ => values[i - 2 * n],
+        })
+    } else {
+        lagrangian.eval_with(|i| if i < n { q[i] } else { v[i - n] })
+    }
+}
+
 fn velocity(name: &str) -> String {
     format!("{name}_dot")
 }
 
-fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
+pub(super) fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError> {
     check_names(spec)?;
     let names = || spec.coordinates.iter().map(|c| c.name.clone());
     let mut lagrangian = Scope::new();
