@@ -81,6 +81,10 @@ pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// Value, ∂f/∂a and ∂f/∂b of f at (a, b) by dual numbers ([`ad::first`]).
     fn first<F: PairFunction<Self>>(self, f: &F, a: &Self::Array<f64>, b: &Self::Array<f64>) -> FirstDerivatives<Self>;
 
+    /// `f` of a buffer of at least 5n + 1 zeros: on the stack for a fixed dimension (where a compiled
+    /// step program's inputs and outputs are kept, in a step that must not allocate).
+    fn scratch<R>(self, f: impl FnOnce(&mut [f64]) -> R) -> R;
+
     /// The vector of zeros.
     fn zeros(self) -> Self::Vector {
         self.vector(|_| 0.0)
@@ -150,6 +154,16 @@ impl<const N: usize> Dim for Fixed<N> {
     }
 
     #[inline(always)]
+    fn scratch<R>(self, f: impl FnOnce(&mut [f64]) -> R) -> R {
+        if N == 0 {
+            return f(&mut [0.0]);
+        }
+        // 6N ≥ 5N + 1.
+        let mut buffer = [[0.0; N]; 6];
+        f(buffer.as_flattened_mut())
+    }
+
+    #[inline(always)]
     fn zeros(self) -> SVector<f64, N> {
         SVector::zeros()
     }
@@ -199,6 +213,10 @@ impl Dim for Dynamic {
 
     fn mixed<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> MixedDerivatives<Self> {
         ad::mixed_blocks(self, f, a, b)
+    }
+
+    fn scratch<R>(self, f: impl FnOnce(&mut [f64]) -> R) -> R {
+        f(&mut vec![0.0; 5 * self.0 + 1])
     }
 
     fn first<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> FirstDerivatives<Self> {

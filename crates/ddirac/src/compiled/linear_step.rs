@@ -37,7 +37,6 @@ use super::graph::{Graph, Node};
 use super::{CompileError, Instruction, Program, Traced};
 use crate::dim::{Dim, Fixed};
 use rustc_hash::FxHashMap;
-use std::cell::RefCell;
 
 /// Derivatives that vary by less than this, relative, over unit moves of the unknowns count as
 /// constant (see [`constant_in`]); the residual test of every step guards the rest.
@@ -52,8 +51,6 @@ pub struct LinearStep<Dm: Dim> {
     program: std::sync::Arc<Executable>,
     /// Instructions of the step program.
     pub instructions: usize,
-    /// The program's inputs (base, m) and outputs (z, f, r, m'), kept between steps.
-    buffers: RefCell<(Vec<f64>, Vec<f64>)>,
 }
 
 /// What [`LinearStep::solve`] returns: the unknowns and what the step needs at them.
@@ -112,9 +109,8 @@ impl<Dm: Dim> LinearStep<Dm> {
             Ok(program) => program,
             Err(refusal) => return Ok(Err(refusal)),
         };
-        let (instructions, n) = (program.instructions.len(), dim.n());
-        let buffers = RefCell::new((vec![0.0; 2 * n], vec![0.0; 1 + 3 * n]));
-        Ok(Ok(Self { dim, program: super::cache::shared(&program)?, instructions, buffers }))
+        let instructions = program.instructions.len();
+        Ok(Ok(Self { dim, program: super::cache::shared(&program)?, instructions }))
     }
 
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are
@@ -122,17 +118,19 @@ impl<Dm: Dim> LinearStep<Dm> {
     /// [`LinearStep::new`] are used.
     pub fn solve(&self, base: &Dm::Array<f64>, momenta: &Dm::Array<f64>) -> LinearSolution<Dm> {
         let (dim, n) = (self.dim, self.dim.n());
-        let mut buffers = self.buffers.borrow_mut();
-        let (inputs, outputs) = &mut *buffers;
-        inputs[..n].copy_from_slice(base.as_ref());
-        inputs[n..].copy_from_slice(momenta.as_ref());
-        self.program.call(inputs, outputs);
-        LinearSolution {
-            z: dim.array(|i| outputs[i]),
-            value: outputs[n],
-            residual: dim.array(|i| outputs[n + 1 + i]),
-            momenta_next: dim.array(|i| outputs[2 * n + 1 + i]),
-        }
+        dim.scratch(|buffer| {
+            let (inputs, outputs) = buffer.split_at_mut(2 * n);
+            inputs[..n].copy_from_slice(base.as_ref());
+            inputs[n..].copy_from_slice(momenta.as_ref());
+            let outputs = &mut outputs[..1 + 3 * n];
+            self.program.call(inputs, outputs);
+            LinearSolution {
+                z: dim.array(|i| outputs[i]),
+                value: outputs[n],
+                residual: dim.array(|i| outputs[n + 1 + i]),
+                momenta_next: dim.array(|i| outputs[2 * n + 1 + i]),
+            }
+        })
     }
 }
 
