@@ -126,8 +126,8 @@ impl<const N: usize> Dim for Fixed<N> {
     }
 
     #[inline(always)]
-    fn matrix(self, mut f: impl FnMut(usize, usize) -> f64) -> SMatrix<f64, N, N> {
-        SMatrix::from_fn(|i, j| f(i, j))
+    fn matrix(self, f: impl FnMut(usize, usize) -> f64) -> SMatrix<f64, N, N> {
+        SMatrix::from_fn(f)
     }
 
     #[inline(always)]
@@ -199,8 +199,8 @@ impl Dim for Dynamic {
         DVector::from_fn(self.0, |i, _| f(i))
     }
 
-    fn matrix(self, mut f: impl FnMut(usize, usize) -> f64) -> DMatrix<f64> {
-        DMatrix::from_fn(self.0, self.0, |i, j| f(i, j))
+    fn matrix(self, f: impl FnMut(usize, usize) -> f64) -> DMatrix<f64> {
+        DMatrix::from_fn(self.0, self.0, f)
     }
 
     fn entries(v: &DVector<f64>) -> &[f64] {

@@ -12,7 +12,7 @@ use crate::dim::Dim;
 /// one of its solutions). Returns `None` if `a` is zero or non-finite.
 pub(crate) fn solve<Dm: Dim>(dim: Dm, a: &Dm::Matrix, b: &Dm::Vector, rel_tol: f64) -> Option<(Dm::Vector, usize)> {
     let lu = Factorization::new(dim, a, rel_tol)?;
-    Some((lu.solve(&b), lu.rank))
+    Some((lu.solve(b), lu.rank))
 }
 
 /// P A Q = L U with full pivoting, kept to solve several right-hand sides.

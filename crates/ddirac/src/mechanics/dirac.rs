@@ -81,9 +81,9 @@ mod tests {
         let p: [f64; N] = std::array::from_fn(|i| 0.1 * i as f64);
         for choice in [Differentiation::Dual, Differentiation::Compiled] {
             for rule in [Rule::Midpoint, Rule::Trapezoid] {
-                let fixed = LagrangeDirac { ld: DiscreteLagrangian::new(chain.clone(), rule, 0.01), dim: Fixed::<N> };
+                let fixed = LagrangeDirac { ld: DiscreteLagrangian::new(chain, rule, 0.01), dim: Fixed::<N> };
                 let dynamic = LagrangeDirac {
-                    ld: DiscreteLagrangian::new(AsDynamic::<_, N>(chain.clone()), rule, 0.01),
+                    ld: DiscreteLagrangian::new(AsDynamic::<_, N>(chain), rule, 0.01),
                     dim: Dynamic(N),
                 };
                 let method = crate::Method { rule, differentiation: choice, ..crate::Method::default() };

@@ -180,16 +180,13 @@ mod tests {
         for connection in [Connection::zero(3, 1), Connection::new(&[vec![0.3, -0.2, 0.1]]).unwrap()] {
             for variant in [Variant::Plus, Variant::Minus] {
                 for choice in [Differentiation::Dual, Differentiation::Compiled] {
-                    let reduced =
-                        |step| ReducedLagrangian::new(system.clone(), Rule::Midpoint, step, connection.clone());
-                    let fixed = LagrangePoincareDirac::new(Fixed::<N>, reduced(0.01).unwrap(), variant);
-                    let dynamic = ReducedLagrangian::new(system.clone(), Rule::Midpoint, 0.01, connection.clone())
-                        .map(|r| ReducedLagrangian {
-                            ld: DiscreteLagrangian::new(AsDynamic::<_, N>(r.ld.system), r.ld.rule, r.ld.step),
-                            split: r.split,
-                            connection: r.connection,
-                        })
-                        .unwrap();
+                    let reduction = ReducedLagrangian::new(system, Rule::Midpoint, 0.01, connection.clone()).unwrap();
+                    let dynamic = ReducedLagrangian {
+                        ld: DiscreteLagrangian::new(AsDynamic::<_, N>(system), Rule::Midpoint, 0.01),
+                        split: reduction.split.clone(),
+                        connection: reduction.connection.clone(),
+                    };
+                    let fixed = LagrangePoincareDirac::new(Fixed::<N>, reduction, variant);
                     let dynamic = LagrangePoincareDirac::new(Dynamic(N), dynamic, variant);
                     let method = Method {
                         rule: Rule::Midpoint,
