@@ -50,9 +50,19 @@ pub(crate) fn momentum_in<Dm: Dim, S: Lagrangian<Dm>>(
     q: &Dm::Array<f64>,
     v: &Dm::Array<f64>,
 ) -> Dm::Array<f64> {
-    let zero = dim.array(|_| 0.0);
-    let da = ad::first(dim, &AtVelocity { system, q, v }, &zero, &zero).da;
+    let da = velocity_gradient(dim, system, q, v);
     dim.array(|i| da[i])
+}
+
+/// ∂L/∂v(q, v) as a vector: what [`momentum_in`] gives, and what the inversion compares with p.
+fn velocity_gradient<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+) -> Dm::Vector {
+    let zero = dim.array(|_| 0.0);
+    ad::first(dim, &AtVelocity { system, q, v }, &zero, &zero).da
 }
 
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
@@ -151,8 +161,7 @@ pub(crate) fn velocity_in<Dm: Dim, S: Lagrangian<Dm>>(
             (lu, fresh) = (Factorization::new(dim, &hess, 1e-10), true);
             grad
         } else {
-            let p = momentum_in(dim, system, q, &array(&v));
-            dim.vector(|i| p[i])
+            velocity_gradient(dim, system, q, &array(&v))
         };
         let r = mismatch_at(&grad);
         let new_mismatch = Dm::amax(&r);
@@ -174,8 +183,7 @@ pub(crate) fn velocity_in<Dm: Dim, S: Lagrangian<Dm>>(
         v -= &delta;
         (fresh_correction, fresh) = (fresh, false);
         if Dm::amax(&delta) <= 1e-15 * (1.0 + Dm::amax(&v)) {
-            let p = momentum_in(dim, system, q, &array(&v));
-            mismatch = Dm::amax(&mismatch_at(&dim.vector(|i| p[i])));
+            mismatch = Dm::amax(&mismatch_at(&velocity_gradient(dim, system, q, &array(&v))));
             break;
         }
     }
