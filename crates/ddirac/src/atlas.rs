@@ -1,9 +1,9 @@
 //! An atlas of charts (paper §6): "we can make computations on the whole Q by starting from a specific
 //! compatible chart and changing to another one whenever it is necessary".
 //!
-//! A system declares its other charts through [`System::charts`], with the maps φ to the main chart
-//! and ψ = φ⁻¹ from it ([`System::chart_to_main`], [`System::main_to_chart`]) and a measure of where each chart
-//! is good ([`System::chart_quality`]). The Lagrangian is written once, in the main chart; in chart c
+//! A system declares its other charts through [`System::charts`](crate::System::charts), with the maps φ to the main chart
+//! and ψ = φ⁻¹ from it ([`System::chart_to_main`](crate::System::chart_to_main), [`System::main_to_chart`](crate::System::main_to_chart)) and a measure of where each chart
+//! is good ([`System::chart_quality`](crate::System::chart_quality)). The Lagrangian is written once, in the main chart; in chart c
 //! it is L ∘ Tφ_c ([`InChart`]): L(φ(q'), Dφ(q') v'), with Dφ(q') v' from a dual number over the
 //! scalar, so that dual numbers, the tracer and compiled code all apply. Each chart is a
 //! retraction-compatible chart of its own, so a step in it is the paper's scheme in that chart:
@@ -17,9 +17,11 @@
 
 use num_dual::Dual;
 
-use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
+use crate::{Coordinate, CoordinateKind, Scalar};
 
-/// A step is taken in the main chart where the main chart's measure ([`System::chart_quality`]) at
+/// A step is taken in the main chart where the main chart's measure ([`System::chart_quality`](crate::System::chart_quality)) at
 /// the step's midpoint is at least this (1/√2: 45° from the pole of spherical coordinates, where the
 /// polar caps' measure is as large); elsewhere in the best chart with the main chart's group
 /// coordinates if its measure is at least this, else in the best chart. The choice depends on the
@@ -34,6 +36,7 @@ pub const SWITCH_BELOW: f64 = std::f64::consts::FRAC_1_SQRT_2;
 ///
 /// ```
 /// use ddirac::{atlas::InChart, System, systems::SphericalPendulum};
+/// use ddirac::mechanics::lagrangian::Lagrangian;
 /// let pendulum = SphericalPendulum::default();
 /// let (main, cap) = (InChart::new(&pendulum, 0), InChart::new(&pendulum, 1));
 /// // The same state in the main chart (θ, φ) and in the lower cap's (x, y).
@@ -43,17 +46,16 @@ pub const SWITCH_BELOW: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// assert!((main.lagrangian(&q, &v) - cap.lagrangian(&q_cap, &v_cap)).abs() < 1e-14);
 /// ```
 #[derive(Debug, Clone)]
-pub struct InChart<S, const N: usize> {
+pub struct InChart<S, Dm: Dim> {
     system: S,
     chart: usize,
-    coordinates: [Coordinate; N],
+    coordinates: Dm::Array<Coordinate>,
 }
 
-impl<S: System<N>, const N: usize> InChart<S, N> {
+impl<S: SystemIn<Dm>, Dm: Dim> InChart<S, Dm> {
     /// `system` in chart `chart` (0 for the main chart). Panics for a chart the system does not have.
     pub fn new(system: S, chart: usize) -> Self {
-        let coordinates =
-            if chart == 0 { system.coordinates() } else { system.charts().swap_remove(chart - 1).coordinates };
+        let coordinates = if chart == 0 { system.coordinates() } else { system.charts().swap_remove(chart - 1).1 };
         Self { system, chart, coordinates }
     }
 
@@ -68,13 +70,9 @@ impl<S: System<N>, const N: usize> InChart<S, N> {
     }
 }
 
-impl<S: System<N>, const N: usize> System<N> for InChart<S, N> {
-    fn coordinates(&self) -> [Coordinate; N] {
-        self.coordinates.clone()
-    }
-
+impl<S: SystemIn<Dm>, Dm: Dim> Lagrangian<Dm> for InChart<S, Dm> {
     #[inline(always)]
-    fn lagrangian<D: Scalar>(&self, q: &[D; N], v: &[D; N]) -> D {
+    fn lagrangian<D: Scalar>(&self, q: &Dm::Array<D>, v: &Dm::Array<D>) -> D {
         if self.chart == 0 {
             return self.system.lagrangian(q, v);
         }
@@ -82,30 +80,42 @@ impl<S: System<N>, const N: usize> System<N> for InChart<S, N> {
             return written;
         }
         // (φ(q), Dφ(q) v) from one evaluation of φ on dual numbers q + ε v.
-        let lifted: [Dual<D>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
+        let dim = Dm::of(q);
+        let lifted: Dm::Array<Dual<D>> = dim.array(|i| Dual::new(q[i], v[i]));
         let image = self.system.chart_to_main(self.chart, &lifted);
-        self.system.lagrangian(&image.map(|x| x.re), &image.map(|x| x.eps))
+        self.system.lagrangian(&dim.array(|i| image[i].re), &dim.array(|i| image[i].eps))
+    }
+}
+
+impl<S: SystemIn<Dm>, Dm: Dim> SystemIn<Dm> for InChart<S, Dm> {
+    #[inline(always)]
+    fn dim(&self) -> Dm {
+        self.system.dim()
     }
 
-    fn exact_solution(&self, q0: &[f64; N], p0: &[f64; N], t: f64) -> Option<[Option<f64>; N]> {
+    fn coordinates(&self) -> Dm::Array<Coordinate> {
+        self.coordinates.clone()
+    }
+
+    fn exact_solution(&self, q0: &Dm::Array<f64>, p0: &Dm::Array<f64>, t: f64) -> Option<Dm::Array<Option<f64>>> {
         (self.chart == 0).then(|| self.system.exact_solution(q0, p0, t)).flatten()
     }
 
-    fn chart_quality(&self, _chart: usize, q: &[f64; N]) -> f64 {
+    fn chart_quality(&self, _chart: usize, q: &Dm::Array<f64>) -> f64 {
         self.system.chart_quality(self.chart, q)
     }
 }
 
 /// Main-chart coordinates `q` moved by whole turns of their angles to the representative nearest
-/// `near` (the default of [`System::nearest_in_main`]).
+/// `near` (the default of [`System::nearest_in_main`](crate::System::nearest_in_main)).
 ///
 /// ```
 /// use ddirac::{atlas::nearest_turns, CoordinateKind::{Angle, Real}};
 /// let q = nearest_turns([0.1, 0.1], &[6.3, 6.3], &[Angle, Real]);
 /// assert_eq!(q, [0.1 + std::f64::consts::TAU, 0.1]);
 /// ```
-pub fn nearest_turns<const N: usize>(mut q: [f64; N], near: &[f64; N], kinds: &[CoordinateKind; N]) -> [f64; N] {
-    for ((q, near), kind) in q.iter_mut().zip(near).zip(kinds) {
+pub fn nearest_turns<A: AsMut<[f64]>>(mut q: A, near: &impl AsRef<[f64]>, kinds: &impl AsRef<[CoordinateKind]>) -> A {
+    for ((q, near), kind) in q.as_mut().iter_mut().zip(near.as_ref()).zip(kinds.as_ref()) {
         if *kind == CoordinateKind::Angle {
             *q += std::f64::consts::TAU * ((*near - *q) / std::f64::consts::TAU).round();
         }
@@ -114,61 +124,67 @@ pub fn nearest_turns<const N: usize>(mut q: [f64; N], near: &[f64; N], kinds: &[
 }
 
 /// A point of chart `chart` in the main chart (the identity for chart 0).
-fn to_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, q: &[D; N]) -> [D; N] {
+fn to_main<S: SystemIn<Dm>, Dm: Dim, D: Scalar>(system: &S, chart: usize, q: &Dm::Array<D>) -> Dm::Array<D> {
     if chart == 0 {
-        *q
+        q.clone()
     } else {
         system.chart_to_main(chart, q)
     }
 }
 
 /// A point of the main chart in chart `chart` (the identity for chart 0).
-fn from_main<S: System<N>, D: Scalar, const N: usize>(system: &S, chart: usize, q: &[D; N]) -> [D; N] {
+fn from_main<S: SystemIn<Dm>, Dm: Dim, D: Scalar>(system: &S, chart: usize, q: &Dm::Array<D>) -> Dm::Array<D> {
     if chart == 0 {
-        *q
+        q.clone()
     } else {
         system.main_to_chart(chart, q)
     }
 }
 
 /// The coordinates in chart `to` of the point with coordinates `q` in chart `from`.
-pub fn point<S: System<N>, const N: usize>(system: &S, from: usize, to: usize, q: &[f64; N]) -> [f64; N] {
+pub fn point<S: SystemIn<Dm>, Dm: Dim>(system: &S, from: usize, to: usize, q: &Dm::Array<f64>) -> Dm::Array<f64> {
     if from == to {
-        return *q;
+        return q.clone();
     }
     from_main(system, to, &to_main(system, from, q))
 }
 
 /// The velocity `v` at the main-chart point `q` in the coordinates of chart `chart`: Dψ(q) v.
-pub fn push_forward<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N], chart: usize) -> [f64; N] {
-    let lifted: [Dual<f64>; N] = std::array::from_fn(|i| Dual::new(q[i], v[i]));
-    from_main(system, chart, &lifted).map(|x| x.eps)
+pub fn push_forward<S: SystemIn<Dm>, Dm: Dim>(
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+    chart: usize,
+) -> Dm::Array<f64> {
+    let dim = Dm::of(q);
+    let lifted: Dm::Array<Dual<f64>> = dim.array(|i| Dual::new(q[i], v[i]));
+    let image = from_main(system, chart, &lifted);
+    dim.array(|i| image[i].eps)
 }
 
 /// The switch from chart `from` to chart `to` of the state (q, p) of chart `from`: the point in
 /// chart `to`, and the momenta by the cotangent lift p' = Dτ(q')ᵀ p of the transition
 /// τ = ψ_from ∘ φ_to (chart `to` → chart `from`), whose Jacobian is taken by dual numbers at q'.
 /// Returns `None` when the result is not finite (the point is outside chart `to`).
-pub fn transition<S: System<N>, const N: usize>(
+pub fn transition<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     from: usize,
     to: usize,
-    q: &[f64; N],
-    p: &[f64; N],
-) -> Option<([f64; N], [f64; N])> {
+    q: &Dm::Array<f64>,
+    p: &Dm::Array<f64>,
+) -> Option<(Dm::Array<f64>, Dm::Array<f64>)> {
+    let dim = Dm::of(q);
     let q_to = point(system, from, to, q);
-    let mut p_to = [0.0; N];
-    for (j, slot) in p_to.iter_mut().enumerate() {
-        let seeded: [Dual<f64>; N] = std::array::from_fn(|i| Dual::new(q_to[i], f64::from(u8::from(i == j))));
+    let p_to = dim.array(|j| {
+        let seeded: Dm::Array<Dual<f64>> = dim.array(|i| Dual::new(q_to[i], f64::from(u8::from(i == j))));
         let column = from_main(system, from, &to_main(system, to, &seeded));
         // Σ_i p_i ∂τ_i/∂q'_j, with exact zeros where τ_i does not depend on q'_j.
-        *slot = column.iter().zip(p).map(|(c, p)| c.eps * p).sum();
-    }
-    q_to.iter().chain(&p_to).all(|x| x.is_finite()).then_some((q_to, p_to))
+        column.as_ref().iter().zip(p.as_ref()).map(|(c, p)| c.eps * p).sum()
+    });
+    q_to.as_ref().iter().chain(p_to.as_ref()).all(|x| x.is_finite()).then_some((q_to, p_to))
 }
 
-/// The charts of `system`: the main chart (index 0) and the others, as [`Chart`]s.
-pub fn all_charts<S: System<N>, const N: usize>(system: &S) -> Vec<Chart<N>> {
-    let main = Chart { name: "main".into(), coordinates: system.coordinates() };
-    std::iter::once(main).chain(system.charts()).collect()
+/// The coordinates of each chart of `system`: the main chart (index 0) and the others.
+pub fn all_charts<S: SystemIn<Dm>, Dm: Dim>(system: &S) -> Vec<Dm::Array<Coordinate>> {
+    std::iter::once(system.coordinates()).chain(system.charts().into_iter().map(|(_, c)| c)).collect()
 }

@@ -9,6 +9,7 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::dim::{Dim, Fixed};
 use crate::CoordinateKind;
 
 /// Wraps an angle to (−π, π].
@@ -27,7 +28,16 @@ pub fn wrap(angle: f64) -> f64 {
     }
 }
 
-/// A configuration: its chart base (angles wrapped) and the full turns of each angle.
+/// A configuration: its chart base (angles wrapped) and the full turns of each angle, in a dimension
+/// ([`Configuration`] for a fixed one).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigurationIn<Dm: Dim> {
+    base: Dm::Array<f64>,
+    turns: Dm::Array<i64>,
+    kinds: Dm::Array<CoordinateKind>,
+}
+
+/// A configuration of `N` coordinates.
 ///
 /// ```
 /// use ddirac::{chart::Configuration, CoordinateKind};
@@ -36,24 +46,22 @@ pub fn wrap(angle: f64) -> f64 {
 /// assert_eq!(c.unwrapped(), [4.0, 4.0]);
 /// assert!((c.base()[1] - (4.0 - std::f64::consts::TAU)).abs() < 1e-15);
 /// ```
-#[derive(Debug, Clone, PartialEq)]
-pub struct Configuration<const N: usize> {
-    base: [f64; N],
-    turns: [i64; N],
-    kinds: [CoordinateKind; N],
-}
+pub type Configuration<const N: usize> = ConfigurationIn<Fixed<N>>;
 
-impl<const N: usize> Configuration<N> {
+impl<Dm: Dim> ConfigurationIn<Dm> {
     /// A configuration at `q` (angles may be given unwrapped).
-    pub fn new(q: [f64; N], kinds: [CoordinateKind; N]) -> Self {
-        let mut c = Self { base: [0.0; N], turns: [0; N], kinds };
+    pub fn new(q: Dm::Array<f64>, kinds: Dm::Array<CoordinateKind>) -> Self {
+        let dim = Dm::of(&q);
+        let mut c = Self { base: dim.array(|_| 0.0), turns: dim.array(|_| 0), kinds };
         c.advance(&q);
         c
     }
 
     /// Moves by the increments `dq`, re-centring each angle's chart.
-    pub fn advance(&mut self, dq: &[f64; N]) {
-        for (((base, turns), kind), d) in self.base.iter_mut().zip(&mut self.turns).zip(&self.kinds).zip(dq) {
+    #[inline]
+    pub fn advance(&mut self, dq: &Dm::Array<f64>) {
+        let (base, turns, kinds) = (self.base.as_mut(), self.turns.as_mut(), self.kinds.as_ref());
+        for (((base, turns), kind), d) in base.iter_mut().zip(turns).zip(kinds).zip(dq.as_ref()) {
             let moved = *base + d;
             *base = match kind {
                 CoordinateKind::Real => moved,
@@ -68,19 +76,25 @@ impl<const N: usize> Configuration<N> {
     }
 
     /// The chart base: real coordinates as they are, angles in (−π, π].
-    pub fn base(&self) -> &[f64; N] {
+    pub fn base(&self) -> &Dm::Array<f64> {
         &self.base
     }
 
+    /// The kinds of the coordinates.
+    pub fn kinds(&self) -> &Dm::Array<CoordinateKind> {
+        &self.kinds
+    }
+
     /// Angles continued through full turns.
-    pub fn unwrapped(&self) -> [f64; N] {
-        std::array::from_fn(|i| self.base[i] + TAU * self.turns[i] as f64)
+    pub fn unwrapped(&self) -> Dm::Array<f64> {
+        let turns = self.turns.as_ref();
+        Dm::of(&self.base).array(|i| self.base[i] + TAU * turns[i] as f64)
     }
 
     /// The configuration for output: unwrapped, or with angles in (−π, π].
-    pub fn output(&self, wrap_angles: bool) -> [f64; N] {
+    pub fn output(&self, wrap_angles: bool) -> Dm::Array<f64> {
         if wrap_angles {
-            self.base
+            self.base.clone()
         } else {
             self.unwrapped()
         }

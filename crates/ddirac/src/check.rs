@@ -8,12 +8,14 @@
 //! check refuses, with the same error.
 
 use crate::diagnostics::{Warning, WarningKind};
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::{Borrowed, SystemIn};
 use crate::mechanics::legendre;
 use crate::periodicity::{periodicity_deviations, PERIODICITY_TOLERANCE};
 use crate::reduction::invariance::{invariance_deviations, INVARIANCE_TOLERANCE};
 use crate::sampling::{self, Deviation, ENOUGH};
 use crate::stepper::Setup;
-use crate::{DiscreteLagrangian, Error, Hypothesis, InitialMomentum, Method, Problem, System};
+use crate::{DiscreteLagrangian, Error, Hypothesis, InitialMomentum, Method, Problem};
 
 /// Relative tolerance of the primary-constraint check.
 pub const CONSTRAINT_TOLERANCE: f64 = 1e-8;
@@ -182,41 +184,41 @@ impl CheckReport {
 /// assert!(report.invariant() && report.regular() && report.periodic());
 /// assert!(report.constraint_mismatch < 1e-12);
 /// ```
-pub fn check<S: System<N>, const N: usize>(
-    system: &S,
-    problem: &Problem,
-    method: &Method,
-) -> Result<CheckReport, Error> {
-    crate::stack::enough::<N, _>(|| {
+pub fn check<S: SystemIn<Dm>, Dm: Dim>(system: &S, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {
+    crate::stack::enough(system.dim(), || {
         let setup = Setup::new(system, problem, method)?;
         Ok(findings(system, problem, method, &setup))
     })
 }
 
 /// The findings of [`check`] for a run already set up.
-pub(crate) fn findings<S: System<N>, const N: usize>(
+pub(crate) fn findings<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     problem: &Problem,
     method: &Method,
-    setup: &Setup<N>,
+    setup: &Setup<Dm>,
 ) -> CheckReport {
-    let ld = DiscreteLagrangian::new(system, method.rule, problem.step);
+    let dim = system.dim();
+    let ld = DiscreteLagrangian::new(Borrowed(system), method.rule, problem.step);
     let names = system.coordinates();
     let samples = sampling::near(&ld, &setup.q0, &setup.dq0);
-    let invariance =
-        invariance_deviations(&ld, &setup.split, &samples).into_iter().map(|d| Finding::new(&names, d)).collect();
-    let periodicity = periodicity_deviations(&ld, &samples).into_iter().map(|d| Finding::new(&names, d)).collect();
-    let (v0, constraint_mismatch) = legendre::velocity(system, &setup.q0, &setup.p0);
+    let invariance = invariance_deviations(&ld, &setup.split, &samples)
+        .into_iter()
+        .map(|d| Finding::new(names.as_ref(), d))
+        .collect();
+    let periodicity =
+        periodicity_deviations(&ld, &samples).into_iter().map(|d| Finding::new(names.as_ref(), d)).collect();
+    let (v0, constraint_mismatch) = legendre::velocity_in(dim, system, &setup.q0, &setup.p0);
     CheckReport {
         invariance,
         invariance_tolerance: INVARIANCE_TOLERANCE,
         periodicity,
         periodicity_tolerance: PERIODICITY_TOLERANCE,
         connection_axioms: true,
-        legendre_rank: legendre::rank(system, &setup.q0, &v0),
-        coordinates: N,
+        legendre_rank: legendre::rank_in(dim, system, &setup.q0, &v0),
+        coordinates: dim.n(),
         constraint_mismatch,
-        p0_scale: setup.p0.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+        p0_scale: setup.p0.as_ref().iter().fold(0.0f64, |m, v| m.max(v.abs())),
         momentum_from_velocity: matches!(problem.initial, InitialMomentum::Velocity(_)),
     }
 }

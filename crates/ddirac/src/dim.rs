@@ -13,8 +13,8 @@ use std::fmt::Debug;
 use std::ops::{Index, IndexMut, SubAssign};
 
 /// What an entry of a [`Dim::Array`] must be.
-pub trait Entry: Clone + Debug + PartialEq + 'static {}
-impl<T: Clone + Debug + PartialEq + 'static> Entry for T {}
+pub trait Entry: Clone + Debug + PartialEq + Send + Sync + 'static {}
+impl<T: Clone + Debug + PartialEq + Send + Sync + 'static> Entry for T {}
 
 /// A number of coordinates, and the types that hold n values, a vector of n numbers and an n × n
 /// matrix.
@@ -30,6 +30,8 @@ pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// n values: `[T; N]` or `Vec<T>`.
     type Array<T: Entry>: Clone
         + 'static
+        + Send
+        + Sync
         + Debug
         + PartialEq
         + AsRef<[T]>
@@ -56,6 +58,10 @@ pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
 
     /// n.
     fn n(self) -> usize;
+
+    /// Whether the arrays, vectors and matrices of this dimension live on the stack (what a step
+    /// needs of the stack then grows with n², [`crate::stack`]).
+    const ON_STACK: bool;
 
     /// The dimension of an array of it.
     fn of<T: Entry>(array: &Self::Array<T>) -> Self;
@@ -104,6 +110,7 @@ impl<const N: usize> Dim for Fixed<N> {
     type Array<T: Entry> = [T; N];
     type Vector = SVector<f64, N>;
     type Matrix = SMatrix<f64, N, N>;
+    const ON_STACK: bool = true;
 
     #[inline(always)]
     fn n(self) -> usize {
@@ -182,6 +189,7 @@ impl Dim for Dynamic {
     type Array<T: Entry> = Vec<T>;
     type Vector = DVector<f64>;
     type Matrix = DMatrix<f64>;
+    const ON_STACK: bool = false;
 
     fn n(self) -> usize {
         self.0

@@ -5,9 +5,12 @@ use std::any::Any;
 use std::sync::Arc;
 
 use crate::diagnostics::{Row, Summary};
+use crate::dim::{Dim, Dynamic, Fixed};
 use crate::integrator::OutputError;
+use crate::mechanics::lagrangian::{Borrowed, SystemIn};
 use crate::{
-    CheckReport, Coordinate, Error, Input, Method, OutputOptions, OwnedRow, Problem, State, StepReport, Stepper, System,
+    CheckReport, Coordinate, Error, Input, Method, OutputOptions, OwnedRowIn, Problem, StateIn, StepReport, StepperIn,
+    System,
 };
 
 /// A system whose type and dimension are erased.
@@ -65,13 +68,47 @@ pub trait DynSystem: Send + Sync {
 #[derive(Debug, Clone)]
 pub struct Erased<S, const N: usize>(pub S);
 
-impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
+/// Wraps a system whose number of coordinates is chosen at run time (a system in [`Dynamic`], such
+/// as [`crate::expression::ExpressionLagrangian`]) as a [`DynSystem`].
+#[derive(Debug, Clone)]
+pub struct ErasedDynamic<S>(pub S);
+
+/// A wrapper that holds a system in a dimension: what [`DynSystem`] is implemented for.
+pub trait Holds: Send + Sync {
+    /// The dimension.
+    type Dm: Dim;
+    /// The system.
+    type System: SystemIn<Self::Dm> + Send + Sync;
+
+    /// The system held.
+    fn held(&self) -> &Self::System;
+}
+
+impl<S: System<N> + Send + Sync, const N: usize> Holds for Erased<S, N> {
+    type Dm = Fixed<N>;
+    type System = S;
+
+    fn held(&self) -> &S {
+        &self.0
+    }
+}
+
+impl<S: SystemIn<Dynamic> + Send + Sync> Holds for ErasedDynamic<S> {
+    type Dm = Dynamic;
+    type System = S;
+
+    fn held(&self) -> &S {
+        &self.0
+    }
+}
+
+impl<H: Holds> DynSystem for H {
     fn coordinates(&self) -> Vec<Coordinate> {
-        self.0.coordinates().to_vec()
+        self.held().coordinates().as_ref().to_vec()
     }
 
     fn charts(&self) -> Vec<String> {
-        self.0.charts().into_iter().map(|c| c.name).collect()
+        self.held().charts().into_iter().map(|(name, _)| name).collect()
     }
 
     fn integrate(
@@ -81,7 +118,7 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
         output: &OutputOptions,
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
-        crate::integrate(&self.0, problem, method, output, observer)
+        crate::integrate(self.held(), problem, method, output, observer)
     }
 
     fn integrate_watched(
@@ -92,24 +129,29 @@ impl<S: System<N> + Send + Sync, const N: usize> DynSystem for Erased<S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
         watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
     ) -> Result<Summary, Error> {
-        crate::integrate_watched(&self.0, problem, method, output, observer, watch)
+        crate::integrate_watched(self.held(), problem, method, output, observer, watch)
     }
 
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {
-        crate::check(&self.0, problem, method)
+        crate::check(self.held(), problem, method)
     }
 
     fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error> {
-        Ok(Box::new(Stepper::new(&self.0, problem, method)?))
+        Ok(Box::new(StepperIn::new(Borrowed(self.held()), problem, method)?))
     }
 
     fn exact_solution(&self, q0: &[f64], p0: &[f64], t: f64) -> Option<Vec<Option<f64>>> {
-        let (q0, p0): (&[f64; N], &[f64; N]) = (q0.try_into().ok()?, p0.try_into().ok()?);
-        self.0.exact_solution(q0, p0, t).map(|exact| exact.to_vec())
+        let system = self.held();
+        let dim = system.dim();
+        if q0.len() != dim.n() || p0.len() != dim.n() {
+            return None;
+        }
+        let (q0, p0) = (dim.array(|i| q0[i]), dim.array(|i| p0[i]));
+        system.exact_solution(&q0, &p0, t).map(|exact| exact.as_ref().to_vec())
     }
 }
 
-/// A [`Stepper`] whose system type and dimension are erased; vectors are `Vec`s.
+/// A [`crate::Stepper`] whose system type and dimension are erased; vectors are `Vec`s.
 ///
 /// ```
 /// use ddirac::{DynState, DynSystem, Erased, Method, Rule, systems::ChargedParticle};
@@ -175,29 +217,29 @@ pub trait DynStepper {
     fn renew(&mut self, problem: &Problem) -> Result<bool, Error>;
 }
 
-impl<S: System<N> + Clone, const N: usize> DynStepper for Stepper<S, N> {
+impl<S: SystemIn<Dm> + Clone, Dm: Dim> DynStepper for StepperIn<S, Dm> {
     fn k(&self) -> usize {
-        Stepper::k(self)
+        StepperIn::k(self)
     }
 
     fn t(&self) -> f64 {
-        Stepper::t(self)
+        StepperIn::t(self)
     }
 
     fn steps(&self) -> usize {
-        Stepper::steps(self)
+        StepperIn::steps(self)
     }
 
     fn is_finished(&self) -> bool {
-        Stepper::is_finished(self)
+        StepperIn::is_finished(self)
     }
 
     fn set_wrap_angles(&mut self, wrap: bool) {
-        Stepper::set_wrap_angles(self, wrap);
+        StepperIn::set_wrap_angles(self, wrap);
     }
 
     fn step(&mut self) -> Result<StepReport, Error> {
-        Stepper::step(self)
+        StepperIn::step(self)
     }
 
     fn run_to_end(
@@ -206,41 +248,45 @@ impl<S: System<N> + Clone, const N: usize> DynStepper for Stepper<S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
         watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
     ) -> Result<(), Error> {
-        Stepper::run_to_end(self, every, observer, watch)
+        StepperIn::run_to_end(self, every, observer, watch)
     }
 
     fn row(&mut self) -> DynRow {
-        Stepper::row(self).into()
+        StepperIn::row(self).into()
     }
 
     fn state(&self) -> DynState {
-        Stepper::state(self).into()
+        StepperIn::state(self).into()
     }
 
     fn restart(&mut self, state: &DynState) -> Result<(), Error> {
-        if let Some(typed) = state.typed.as_ref().and_then(|t| t.downcast_ref::<State<N>>()) {
-            return Stepper::restart(self, typed);
+        if let Some(typed) = state.typed.as_ref().and_then(|t| t.downcast_ref::<StateIn<Dm>>()) {
+            return StepperIn::restart(self, typed);
         }
-        let sized = |v: &[f64]| -> Result<[f64; N], Error> {
-            v.try_into().map_err(|_| Error::Size { what: Input::State, expected: N, found: v.len() })
+        let dim = self.dim();
+        let sized = |v: &[f64]| -> Result<Dm::Array<f64>, Error> {
+            if v.len() != dim.n() {
+                return Err(Error::Size { what: Input::State, expected: dim.n(), found: v.len() });
+            }
+            Ok(dim.array(|i| v[i]))
         };
-        Stepper::restart(self, &State::new(state.k, sized(&state.q)?, sized(&state.p)?))
+        StepperIn::restart(self, &StateIn::new(state.k, sized(&state.q)?, sized(&state.p)?))
     }
 
     fn finish(self: Box<Self>) -> Result<Summary, Error> {
-        Stepper::finish(*self)
+        StepperIn::finish(*self)
     }
 
     fn summary(&mut self) -> Result<Summary, Error> {
-        Stepper::summary(self)
+        StepperIn::summary(self)
     }
 
     fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
-        Stepper::renew(self, problem)
+        StepperIn::renew(self, problem)
     }
 }
 
-/// A [`State`] whose dimension is erased. A state taken from a stepper keeps the stepper's memory
+/// A [`crate::State`] whose dimension is erased. A state taken from a stepper keeps the stepper's memory
 /// for a bit-for-bit restart of a stepper of the same system, method and step.
 #[derive(Clone)]
 pub struct DynState {
@@ -302,15 +348,15 @@ impl std::fmt::Debug for DynState {
     }
 }
 
-impl<const N: usize> From<State<N>> for DynState {
-    fn from(state: State<N>) -> Self {
-        let (k, q, p) = (state.k(), state.q().to_vec(), state.p().to_vec());
+impl<Dm: Dim> From<StateIn<Dm>> for DynState {
+    fn from(state: StateIn<Dm>) -> Self {
+        let (k, q, p) = (state.k(), state.q().as_ref().to_vec(), state.p().as_ref().to_vec());
         let typed: Option<Arc<dyn Any + Send + Sync>> = state.is_warm().then(|| Arc::new(state) as _);
         Self { k, q, p, typed }
     }
 }
 
-/// A row of the trajectory with its vectors as `Vec`s ([`DynStepper::row`]); see [`OwnedRow`].
+/// A row of the trajectory with its vectors as `Vec`s ([`DynStepper::row`]); see [`crate::OwnedRow`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynRow {
     /// Step index k.
@@ -331,13 +377,13 @@ pub struct DynRow {
     pub chart: usize,
 }
 
-impl<const N: usize> From<OwnedRow<N>> for DynRow {
-    fn from(row: OwnedRow<N>) -> Self {
+impl<Dm: Dim> From<OwnedRowIn<Dm>> for DynRow {
+    fn from(row: OwnedRowIn<Dm>) -> Self {
         Self {
             k: row.k,
             t: row.t,
-            q: row.q.to_vec(),
-            p: row.p.to_vec(),
+            q: row.q.as_ref().to_vec(),
+            p: row.p.as_ref().to_vec(),
             energy: row.energy,
             discrete_energy: row.discrete_energy,
             momentum_map: row.momentum_map().to_vec(),

@@ -2,7 +2,9 @@
 //! keeps them in memory.
 
 use crate::diagnostics::{Row, Solution, Summary};
-use crate::{Error, Input, Method, OutputOptions, Problem, Stepper, System};
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::{Borrowed, SystemIn};
+use crate::{Error, Input, Method, OutputOptions, Problem, StepperIn};
 
 /// The error type an output consumer may return.
 pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
@@ -25,7 +27,7 @@ pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
 /// assert_eq!(rows, 101);
 /// assert!((summary.reference_error.unwrap() - 0.06626).abs() < 5e-6); // paper, Table 1
 /// ```
-pub fn integrate<S: System<N>, const N: usize>(
+pub fn integrate<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     problem: &Problem,
     method: &Method,
@@ -56,7 +58,7 @@ pub const WATCH_STEPS: usize = 64;
 ///     .unwrap();
 /// assert_eq!(watched, [0, WATCH_STEPS, 2 * WATCH_STEPS]);
 /// ```
-pub fn integrate_watched<S: System<N>, const N: usize>(
+pub fn integrate_watched<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     problem: &Problem,
     method: &Method,
@@ -67,7 +69,7 @@ pub fn integrate_watched<S: System<N>, const N: usize>(
     if output.every == 0 {
         return Err(Error::Invalid { what: Input::Every, why: "must be at least 1".into() });
     }
-    let mut stepper = Stepper::new(system, problem, method)?;
+    let mut stepper = StepperIn::new(Borrowed(system), problem, method)?;
     stepper.set_wrap_angles(output.wrap_angles);
     stepper.run_to_end(output.every, observer, watch)?;
     stepper.finish()
@@ -83,7 +85,7 @@ pub fn integrate_watched<S: System<N>, const N: usize>(
 /// assert_eq!(solution.t.len(), 11);
 /// assert!((solution.summary.reference_error.unwrap() - 1.6781).abs() < 5e-5); // paper, Table 1
 /// ```
-pub fn solve<S: System<N>, const N: usize>(
+pub fn solve<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     problem: &Problem,
     method: &Method,

@@ -248,12 +248,24 @@ pub fn solve_with<V: Column>(
     kept: &mut KeptJacobian<V::Dim>,
     eval: impl FnMut(&V, bool) -> (V, Option<MatrixOf<V>>),
 ) -> Result<NewtonStats, NewtonFailure> {
+    solve_in(z.dim(), z, residual_scale, options, kept, eval)
+}
+
+/// [`solve_with`] for unknowns of the dimension `dim` (for callers generic over the dimension).
+pub(crate) fn solve_in<Dm: Dim>(
+    dim: Dm,
+    z: &mut Dm::Vector,
+    residual_scale: f64,
+    options: &NewtonOptions,
+    kept: &mut KeptJacobian<Dm>,
+    eval: impl FnMut(&Dm::Vector, bool) -> (Dm::Vector, Option<Dm::Matrix>),
+) -> Result<NewtonStats, NewtonFailure> {
     let reuse =
         options.reuse_jacobian && kept.across_solves() && kept.lu.is_some() && kept.corrections <= kept.budget();
     if !reuse {
         kept.lu = None;
     }
-    let result = chord(z, residual_scale, options, &mut kept.lu, eval);
+    let result = chord(dim, z, residual_scale, options, &mut kept.lu, eval);
     match &result {
         Ok(stats) => kept.corrections = stats.iterations,
         Err(_) => kept.lu = None,
@@ -261,20 +273,20 @@ pub fn solve_with<V: Column>(
     result
 }
 
-fn chord<V: Column>(
-    z: &mut V,
+fn chord<Dm: Dim>(
+    dim: Dm,
+    z: &mut Dm::Vector,
     residual_scale: f64,
     options: &NewtonOptions,
-    kept: &mut Option<Factorization<V::Dim>>,
-    mut eval: impl FnMut(&V, bool) -> (V, Option<MatrixOf<V>>),
+    kept: &mut Option<Factorization<Dm>>,
+    mut eval: impl FnMut(&Dm::Vector, bool) -> (Dm::Vector, Option<Dm::Matrix>),
 ) -> Result<NewtonStats, NewtonFailure> {
-    let dim = z.dim();
     let (mut iterations, mut jacobians) = (0, 0);
-    let mut evaluate = |kept: &mut Option<Factorization<V::Dim>>, z: &V, with_jacobian: bool, iterations| {
+    let mut evaluate = |kept: &mut Option<Factorization<Dm>>, z: &Dm::Vector, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);
-        let residual = V::Dim::amax(&r);
-        let finite = residual.is_finite()
-            && jac.as_ref().is_none_or(|j| V::Dim::matrix_entries(j).iter().all(|x| x.is_finite()));
+        let residual = Dm::amax(&r);
+        let finite =
+            residual.is_finite() && jac.as_ref().is_none_or(|j| Dm::matrix_entries(j).iter().all(|x| x.is_finite()));
         if !finite {
             let residual = if residual.is_finite() { residual } else { f64::NAN };
             return Err(NewtonFailure { reason: FailureReason::NonFinite, iterations, residual });
@@ -287,7 +299,7 @@ fn chord<V: Column>(
     let mut fresh = kept.is_none();
     let (mut r, mut residual) = evaluate(kept, z, fresh, iterations)?;
     jacobians += usize::from(fresh);
-    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), V::Dim::amax(z));
+    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), Dm::amax(z));
     let mut small_correction = false;
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);
@@ -310,7 +322,7 @@ fn chord<V: Column>(
             .as_ref()
             .filter(|lu| lu.is_regular())
             .map(|lu| lu.solve(&r))
-            .filter(|d| V::Dim::entries(d).iter().all(|x| x.is_finite()));
+            .filter(|d| Dm::entries(d).iter().all(|x| x.is_finite()));
         let Some(delta) = delta else {
             if fresh {
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
@@ -323,7 +335,7 @@ fn chord<V: Column>(
         let (previous_z, previous) = (z.clone(), residual);
         *z -= &delta;
         iterations += 1;
-        small_correction = V::Dim::amax(&delta) <= options.tolerance * (1.0 + V::Dim::amax(z));
+        small_correction = Dm::amax(&delta) <= options.tolerance * (1.0 + Dm::amax(z));
         stale = !fresh;
         fresh = !options.reuse_jacobian;
         let trial = evaluate(kept, z, fresh, iterations);

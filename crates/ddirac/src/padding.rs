@@ -49,7 +49,7 @@ pub(crate) fn lagrangian<D: Scalar, const N: usize>(v: &[D; N], used: usize, mas
 /// in v; 1 where neither is finite and nonzero at any reference point.
 pub(crate) fn mass<S: System<N>, const N: usize>(system: &S) -> f64 {
     // Its dual numbers need the stack a step needs (`crate::stack`).
-    crate::stack::enough::<N, _>(|| reference_scale(system))
+    crate::stack::enough(crate::dim::Fixed::<N>, || reference_scale(system))
 }
 
 // Not inlined into `mass`: its dual numbers' arrays would be part of the frame that decides on the stack.

@@ -8,27 +8,29 @@
 
 use std::f64::consts::TAU;
 
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::SystemIn;
 use crate::sampling::{relative_change, Deviation, Sample};
-use crate::{CoordinateKind, DiscreteLagrangian, System};
+use crate::{CoordinateKind, DiscreteLagrangian};
 
 /// Relative tolerance of the periodicity deviation.
 pub const PERIODICITY_TOLERANCE: f64 = 1e-9;
 
 /// The periodicity deviation of L_d in each angle coordinate alone, over the pairs `samples`: one
 /// [`Deviation`] per angle, in coordinate order.
-pub fn periodicity_deviations<S: System<N>, const N: usize>(
+pub fn periodicity_deviations<S: SystemIn<Dm>, Dm: Dim>(
     ld: &DiscreteLagrangian<S>,
-    samples: &[Sample<N>],
+    samples: &[Sample<Dm>],
 ) -> Vec<Deviation> {
     let coordinates = ld.system.coordinates();
-    (0..N)
+    (0..coordinates.as_ref().len())
         .filter(|&i| coordinates[i].kind == CoordinateKind::Angle)
         .map(|i| {
             let worst = samples.iter().fold(0.0f64, |worst, sample| {
-                let (mut s0, mut s1) = (sample.q0, sample.q1);
+                let (mut s0, mut s1) = (sample.q0.clone(), sample.q1.clone());
                 s0[i] += TAU;
                 s1[i] += TAU;
-                worst.max(relative_change(sample, ld.value(&s0, &s1), TAU))
+                worst.max(relative_change(sample, ld.value_in::<Dm>(&s0, &s1), TAU))
             });
             Deviation { coordinate: i, deviation: worst, samples: samples.len() }
         })

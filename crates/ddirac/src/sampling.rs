@@ -6,11 +6,10 @@
 //! the domain of a `sqrt`, across a singular potential), so that a Lagrangian defined only on a
 //! small neighbourhood of the initial data is still tested there and never passes for want of points.
 
-use nalgebra::SVector;
-
 use crate::ad::FirstDerivatives;
-use crate::dim::Fixed;
-use crate::{DiscreteLagrangian, System};
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::Lagrangian;
+use crate::DiscreteLagrangian;
 
 /// How many pairs a verdict wants.
 pub const WANTED: usize = 16;
@@ -22,20 +21,20 @@ const RADII: [f64; 6] = [0.5, 5e-2, 5e-3, 5e-4, 5e-5, 5e-6];
 const TRIES: usize = 24;
 
 /// A pair (q0, q1) with L_d and its gradient there, all finite.
-#[derive(Debug, Clone, Copy)]
-pub struct Sample<const N: usize> {
+#[derive(Debug, Clone)]
+pub struct Sample<Dm: Dim> {
     /// The first configuration.
-    pub q0: [f64; N],
+    pub q0: Dm::Array<f64>,
     /// The second configuration.
-    pub q1: [f64; N],
+    pub q1: Dm::Array<f64>,
     /// L_d(q0, q1), D1 L_d and D2 L_d.
-    pub derivatives: FirstDerivatives<Fixed<N>>,
+    pub derivatives: FirstDerivatives<Dm>,
 }
 
-impl<const N: usize> Sample<N> {
+impl<Dm: Dim> Sample<Dm> {
     /// ‖(D1 L_d, D2 L_d)‖∞: the size of L_d's change per unit move, the scale of every deviation.
     pub fn slope(&self) -> f64 {
-        self.derivatives.da.amax().max(self.derivatives.db.amax())
+        Dm::amax(&self.derivatives.da).max(Dm::amax(&self.derivatives.db))
     }
 }
 
@@ -56,31 +55,37 @@ impl Uniform {
 }
 
 /// L_d and its gradient at (q0, q1), if all are finite.
-pub fn sample<S: System<N>, const N: usize>(
+pub fn sample<S: Lagrangian<Dm>, Dm: Dim>(
     ld: &DiscreteLagrangian<S>,
-    q0: [f64; N],
-    q1: [f64; N],
-) -> Option<Sample<N>> {
-    let d1 = SVector::from(std::array::from_fn(|i| q1[i] - q0[i]));
-    let derivatives = ld.first_derivatives_local(&q0, &SVector::zeros(), &d1);
-    let finite =
-        derivatives.value.is_finite() && derivatives.da.iter().chain(derivatives.db.iter()).all(|v| v.is_finite());
+    q0: Dm::Array<f64>,
+    q1: Dm::Array<f64>,
+) -> Option<Sample<Dm>> {
+    let dim = Dm::of(&q0);
+    let d1 = dim.array(|i| q1[i] - q0[i]);
+    let derivatives = ld.first_derivatives_in(&q0, &dim.array(|_| 0.0), &d1);
+    let finite = derivatives.value.is_finite()
+        && Dm::entries(&derivatives.da).iter().chain(Dm::entries(&derivatives.db)).all(|v| v.is_finite());
     finite.then_some(Sample { q0, q1, derivatives })
 }
 
 /// Up to [`WANTED`] pairs near (q, q + dq) where L_d and its gradient are finite, the first step
 /// (q, q + dq) first when it is one of them. Fewer are returned only when no more could be found.
-pub fn near<S: System<N>, const N: usize>(ld: &DiscreteLagrangian<S>, q: &[f64; N], dq: &[f64; N]) -> Vec<Sample<N>> {
+pub fn near<S: Lagrangian<Dm>, Dm: Dim>(
+    ld: &DiscreteLagrangian<S>,
+    q: &Dm::Array<f64>,
+    dq: &Dm::Array<f64>,
+) -> Vec<Sample<Dm>> {
+    let dim = Dm::of(q);
     let mut uniform = Uniform::new();
-    let first_step = std::array::from_fn(|i| q[i] + dq[i]);
-    let mut samples: Vec<Sample<N>> = sample(ld, *q, first_step).into_iter().collect();
+    let first_step = dim.array(|i| q[i] + dq[i]);
+    let mut samples: Vec<Sample<Dm>> = sample(ld, q.clone(), first_step).into_iter().collect();
     for radius in RADII {
         for _ in 0..TRIES {
             if samples.len() >= WANTED {
                 return samples;
             }
-            let q0: [f64; N] = std::array::from_fn(|i| q[i] + uniform.next() * (1.0 + q[i].abs()) * radius);
-            let q1 = std::array::from_fn(|i| {
+            let q0: Dm::Array<f64> = dim.array(|i| q[i] + uniform.next() * (1.0 + q[i].abs()) * radius);
+            let q1 = dim.array(|i| {
                 q0[i] + dq[i] * (1.0 + 0.5 * uniform.next()) + uniform.next() * radius * 2e-3 * (1.0 + q[i].abs())
             });
             samples.extend(sample(ld, q0, q1));
@@ -94,10 +99,11 @@ pub fn near<S: System<N>, const N: usize>(ld: &DiscreteLagrangian<S>, q: &[f64; 
 
 /// The rounding error of L_d(q0 + s, q1 + s) − L_d(q0, q1) for a move s of one coordinate: the last
 /// digits of both values, and of the moved arguments as L_d's slope carries them.
-pub fn rounding<const N: usize>(sample: &Sample<N>, moved: f64, shift: f64) -> f64 {
-    let position = sample.q0.iter().chain(&sample.q1).fold(0.0f64, |m, v| m.max(v.abs()));
+pub fn rounding<Dm: Dim>(sample: &Sample<Dm>, moved: f64, shift: f64) -> f64 {
+    let n = sample.q0.as_ref().len();
+    let position = sample.q0.as_ref().iter().chain(sample.q1.as_ref()).fold(0.0f64, |m, v| m.max(v.abs()));
     64.0 * f64::EPSILON
-        * (sample.derivatives.value.abs().max(moved.abs()) + sample.slope() * (position + shift.abs()) * N as f64)
+        * (sample.derivatives.value.abs().max(moved.abs()) + sample.slope() * (position + shift.abs()) * n as f64)
 }
 
 /// The outcome of a test of one coordinate over the sampled pairs.
@@ -120,7 +126,7 @@ impl Deviation {
 
 /// The deviation of a moved value from a sample's value, relative to `shift` times the sample's
 /// slope, after the rounding error of both values is taken off; infinite when `moved` is not finite.
-pub fn relative_change<const N: usize>(sample: &Sample<N>, moved: f64, shift: f64) -> f64 {
+pub fn relative_change<Dm: Dim>(sample: &Sample<Dm>, moved: f64, shift: f64) -> f64 {
     if !moved.is_finite() {
         return f64::INFINITY;
     }

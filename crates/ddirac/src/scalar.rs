@@ -31,7 +31,7 @@ pub enum RuntimeInput {
 /// // Outside a trace every scalar computes with the plain value.
 /// assert_eq!(<f64 as Scalar>::runtime_input(RuntimeInput::Step, 0.01), None);
 /// ```
-pub trait Scalar: DualNum<Primitive = f64> + Copy {
+pub trait Scalar: DualNum<Primitive = f64> + Copy + Send + Sync {
     /// The number standing for `input` (whose value is `value`) in a trace that keeps it as an input
     /// of the compiled program; `None` on every other scalar, and in traces that fold it.
     #[inline(always)]
@@ -80,7 +80,7 @@ impl Scalar for f64 {}
 /// num-dual's own numbers over `f64`.
 macro_rules! num_dual_scalars {
     ($($t:ident<$($p:ident),*>),*) => {$(
-        impl<$($p),*> Scalar for num_dual::$t<$($p),*> where Self: DualNum<Primitive = f64> + Copy {}
+        impl<$($p),*> Scalar for num_dual::$t<$($p),*> where Self: DualNum<Primitive = f64> + Copy + Send + Sync {}
     )*};
 }
 
@@ -88,21 +88,21 @@ num_dual_scalars!(Dual<T>, Dual2<T>, Dual3<T>, HyperDual<T>, HyperHyperDual<T>, 
 
 impl<T: nalgebra::Scalar, D: nalgebra::Dim> Scalar for num_dual::DualVec<T, D>
 where
-    Self: DualNum<Primitive = f64> + Copy,
+    Self: DualNum<Primitive = f64> + Copy + Send + Sync,
     nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<D>,
 {
 }
 
 impl<T: nalgebra::Scalar, D: nalgebra::Dim> Scalar for num_dual::Dual2Vec<T, D>
 where
-    Self: DualNum<Primitive = f64> + Copy,
+    Self: DualNum<Primitive = f64> + Copy + Send + Sync,
     nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<nalgebra::U1, D> + nalgebra::allocator::Allocator<D, D>,
 {
 }
 
 impl<T: nalgebra::Scalar, M: nalgebra::Dim, N: nalgebra::Dim> Scalar for num_dual::HyperDualVec<T, M, N>
 where
-    Self: DualNum<Primitive = f64> + Copy,
+    Self: DualNum<Primitive = f64> + Copy + Send + Sync,
     nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<M>
         + nalgebra::allocator::Allocator<nalgebra::U1, N>
         + nalgebra::allocator::Allocator<M, N>,

@@ -342,20 +342,10 @@ impl<Sc: Scheme<Dm>, Dm: Dim> PairFunction<Dm> for Generating<'_, Sc, Dm> {
 pub(crate) mod testing {
     use super::*;
     use crate::dim::{Column, Dynamic};
-    use crate::mechanics::lagrangian::Lagrangian;
     use crate::newton::{self, NewtonOptions};
     use crate::System;
 
-    /// A system of a fixed dimension seen as one of a dimension chosen at run time.
-    #[derive(Clone)]
-    pub(crate) struct AsDynamic<S, const N: usize>(pub S);
-
-    impl<S: System<N>, const N: usize> Lagrangian<Dynamic> for AsDynamic<S, N> {
-        fn lagrangian<D: Scalar>(&self, q: &Vec<D>, v: &Vec<D>) -> D {
-            let array = |x: &Vec<D>| -> [D; N] { x.as_slice().try_into().expect("n coordinates") };
-            self.0.lagrangian(&array(q), &array(v))
-        }
-    }
+    pub(crate) use crate::mechanics::lagrangian::AsDynamic;
 
     /// `steps` steps of `scheme` from (q, p), each solved by classical Newton from z = 0: the
     /// configurations and canonical momenta after each.

@@ -6,6 +6,8 @@
 //! points run through `enough`, which continues on a stack taken from the heap when the thread has
 //! less than that left, and costs nothing for systems of up to [`ON_ANY_THREAD`] coordinates.
 
+use crate::dim::Dim;
+
 /// Systems of up to this many coordinates run on the stack of any thread (tested with 2 MiB).
 pub const ON_ANY_THREAD: usize = 16;
 
@@ -15,12 +17,14 @@ pub const fn needed(n: usize) -> usize {
     (256 << 10) + n * n * (2 << 10)
 }
 
-/// Runs `f`, on a new stack of twice [`needed`]`(N)` when less than that is left on this thread's.
+/// Runs `f` for a system in `dim`, on a new stack of twice [`needed`]`(n)` when its arrays live on
+/// the stack ([`Dim::ON_STACK`]) and less than that is left on this thread's.
 #[inline(always)]
-pub(crate) fn enough<const N: usize, R>(f: impl FnOnce() -> R) -> R {
-    if N <= ON_ANY_THREAD {
+pub(crate) fn enough<Dm: Dim, R>(dim: Dm, f: impl FnOnce() -> R) -> R {
+    let n = dim.n();
+    if !Dm::ON_STACK || n <= ON_ANY_THREAD {
         f()
     } else {
-        stacker::maybe_grow(needed(N), 2 * needed(N), f)
+        stacker::maybe_grow(needed(n), 2 * needed(n), f)
     }
 }

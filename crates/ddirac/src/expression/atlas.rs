@@ -93,6 +93,27 @@ pub(super) struct TextChart {
     pub(super) quality: CompiledExpression,
 }
 
+impl TextAtlas {
+    /// Entry `i` of a point `q` of chart `chart` in the main chart (`to_main`), or of a main-chart
+    /// point in chart `chart`; entries beyond the spec's coordinates (padding) are kept.
+    pub(super) fn map<D: crate::Scalar>(&self, chart: usize, to_main: bool, q: &[D], i: usize) -> D {
+        let chart = &self.charts[chart - 1];
+        let maps = if to_main { &chart.to_main } else { &chart.from_main };
+        match maps.get(i) {
+            Some(map) => map.eval_with(|j| q[j]),
+            None => q[i],
+        }
+    }
+
+    /// The measure of chart `chart` (0: the main chart) at its point `q` (the spec's coordinates).
+    pub(super) fn quality(&self, chart: usize, q: &[f64]) -> f64 {
+        match chart {
+            0 => self.quality.eval(q),
+            _ => self.charts[chart - 1].quality.eval(q),
+        }
+    }
+}
+
 /// The scope of expressions in `coordinates`: those as variables, the parameters as constants.
 fn scope(coordinates: &[Coordinate], spec: &ExpressionSpec) -> Scope {
     let mut scope = Scope::new();

@@ -318,17 +318,6 @@ pub enum ExpressionError {
         /// Coordinates declared.
         found: usize,
     },
-    /// More coordinates than the largest engine (see [`crate::SIZES`]).
-    #[error(
-        "the system has {found} coordinates; text systems have at most {} (the engine is built for {} \
-         coordinates, and a count between these runs in the next one up)",
-        crate::SIZES[crate::SIZES.len() - 1],
-        crate::sizes_text()
-    )]
-    UnsupportedSize {
-        /// Coordinates declared.
-        found: usize,
-    },
     /// An engine size that is not one of [`crate::SIZES`], or smaller than the system
     /// ([`super::ExpressionSpec::into_dyn_in`]).
     #[error(
@@ -364,7 +353,6 @@ impl ExpressionError {
             | ExpressionError::MissingQuality
             | ExpressionError::ChartDimension { .. }
             | ExpressionError::Dimension { .. }
-            | ExpressionError::UnsupportedSize { .. }
             | ExpressionError::EngineSize { .. } => None,
         }
     }

@@ -5,10 +5,11 @@
 //! Both evaluate the spec's compiled program the same way (the parameters folded in, or kept as
 //! runtime inputs of a trace), so they give the same numbers.
 
-use super::system::{compile, own_lagrangian, OpenLagrangian};
+use super::atlas::TextAtlas;
+use super::system::{compile, exact_at, own_lagrangian, Compiled, OpenLagrangian};
 use super::{CompiledExpression, ExpressionError, ExpressionSpec};
 use crate::dim::Dynamic;
-use crate::mechanics::lagrangian::Lagrangian;
+use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
 use crate::{Coordinate, Scalar};
 
 /// A text spec's Lagrangian L(q, v), of as many coordinates as the spec declares.
@@ -32,13 +33,19 @@ pub struct ExpressionLagrangian {
     coordinates: Vec<Coordinate>,
     lagrangian: CompiledExpression,
     open: OpenLagrangian,
+    exact: Vec<Option<CompiledExpression>>,
+    atlas: Option<TextAtlas>,
 }
 
 impl ExpressionLagrangian {
-    /// Checks and compiles the spec's Lagrangian.
+    /// Checks and compiles the spec.
     pub fn new(spec: &ExpressionSpec) -> Result<Self, ExpressionError> {
-        let compiled = compile(spec)?;
-        Ok(Self { coordinates: compiled.coordinates, lagrangian: compiled.lagrangian, open: compiled.open })
+        Ok(Self::from_compiled(compile(spec)?))
+    }
+
+    pub(super) fn from_compiled(compiled: Compiled) -> Self {
+        let Compiled { coordinates, lagrangian, open, exact, atlas } = compiled;
+        Self { coordinates, lagrangian, open, exact, atlas }
     }
 
     /// The spec's coordinates, in the order of q and v.
@@ -50,6 +57,48 @@ impl ExpressionLagrangian {
 impl Lagrangian<Dynamic> for ExpressionLagrangian {
     fn lagrangian<D: Scalar>(&self, q: &Vec<D>, v: &Vec<D>) -> D {
         own_lagrangian(&self.lagrangian, &self.open, self.coordinates.len(), q, v)
+    }
+}
+
+/// The spec's coordinates, exact solution and atlas, as [`super::ExpressionSystem`] has them.
+impl SystemIn<Dynamic> for ExpressionLagrangian {
+    fn dim(&self) -> Dynamic {
+        Dynamic(self.coordinates.len())
+    }
+
+    fn coordinates(&self) -> Vec<Coordinate> {
+        self.coordinates.clone()
+    }
+
+    /// The given exact solutions at `t`; `q0` and `p0` are not used.
+    fn exact_solution(&self, _q0: &Vec<f64>, _p0: &Vec<f64>, t: f64) -> Option<Vec<Option<f64>>> {
+        if self.exact.iter().all(Option::is_none) {
+            return None;
+        }
+        Some((0..self.coordinates.len()).map(|i| exact_at(&self.exact, i, t)).collect())
+    }
+
+    fn charts(&self) -> Vec<(String, Vec<Coordinate>)> {
+        let charts = self.atlas.iter().flat_map(|atlas| &atlas.charts);
+        charts.map(|c| (c.name.clone(), c.coordinates.clone())).collect()
+    }
+
+    fn chart_to_main<D: Scalar>(&self, chart: usize, q: &Vec<D>) -> Vec<D> {
+        match &self.atlas {
+            Some(atlas) => (0..q.len()).map(|i| atlas.map(chart, true, q, i)).collect(),
+            None => q.clone(),
+        }
+    }
+
+    fn main_to_chart<D: Scalar>(&self, chart: usize, q: &Vec<D>) -> Vec<D> {
+        match &self.atlas {
+            Some(atlas) => (0..q.len()).map(|i| atlas.map(chart, false, q, i)).collect(),
+            None => q.clone(),
+        }
+    }
+
+    fn chart_quality(&self, chart: usize, q: &Vec<f64>) -> f64 {
+        self.atlas.as_ref().map_or(1.0, |atlas| atlas.quality(chart, q))
     }
 }
 

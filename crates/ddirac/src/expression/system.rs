@@ -9,9 +9,9 @@
 //! the name.
 
 use super::compile::closest;
-use super::{CompiledExpression, ExpressionError, Origin, Scope, FUNCTIONS};
+use super::{CompiledExpression, ExpressionError, ExpressionLagrangian, Origin, Scope, FUNCTIONS};
 use crate::sizes::RuntimeSized;
-use crate::{Chart, Coordinate, DynSystem, Erased, System};
+use crate::{Chart, Coordinate, DynSystem, Erased, ErasedDynamic, System};
 
 /// The text of a system: coordinates, Lagrangian, definitions, parameters and exact solutions, as a
 /// spec file gives them.
@@ -97,8 +97,8 @@ pub(super) struct Compiled {
     pub(super) coordinates: Vec<Coordinate>,
     pub(super) lagrangian: CompiledExpression,
     pub(super) open: OpenLagrangian,
-    exact: Vec<Option<CompiledExpression>>,
-    atlas: Option<super::atlas::TextAtlas>,
+    pub(super) exact: Vec<Option<CompiledExpression>>,
+    pub(super) atlas: Option<super::atlas::TextAtlas>,
 }
 
 impl<const N: usize> ExpressionSystem<N> {
@@ -160,7 +160,7 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
         if self.exact.iter().all(Option::is_none) {
             return None;
         }
-        Some(std::array::from_fn(|i| self.exact.get(i)?.as_ref().map(|program| program.eval(&[t]))))
+        Some(std::array::from_fn(|i| exact_at(&self.exact, i, t)))
     }
 
     fn charts(&self) -> Vec<Chart<N>> {
@@ -172,37 +172,29 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
     fn chart_to_main<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
         match &self.atlas {
-            Some(atlas) => std::array::from_fn(|i| match atlas.charts[chart - 1].to_main.get(i) {
-                Some(map) => map.eval_with(|j| q[j]),
-                None => q[i],
-            }),
+            Some(atlas) => std::array::from_fn(|i| atlas.map(chart, true, q, i)),
             None => *q,
         }
     }
 
     fn main_to_chart<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> [D; N] {
         match &self.atlas {
-            Some(atlas) => std::array::from_fn(|i| match atlas.charts[chart - 1].from_main.get(i) {
-                Some(map) => map.eval_with(|j| q[j]),
-                None => q[i],
-            }),
+            Some(atlas) => std::array::from_fn(|i| atlas.map(chart, false, q, i)),
             None => *q,
         }
     }
 
     fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
-        match &self.atlas {
-            Some(atlas) if chart == 0 => atlas.quality.eval(&q[..self.own]),
-            Some(atlas) => atlas.charts[chart - 1].quality.eval(&q[..self.own]),
-            None => 1.0,
-        }
+        self.atlas.as_ref().map_or(1.0, |atlas| atlas.quality(chart, &q[..self.own]))
     }
 }
 
 impl ExpressionSpec {
-    /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares
-    /// (at most the largest of [`crate::SIZES`], 100). A count that is not itself one of the sizes runs
-    /// in the engine of the next size up with padding coordinates that it hides ([`crate::padding`]).
+    /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares.
+    /// Up to the largest of [`crate::SIZES`] (100) it runs in an engine whose arrays are sized when it
+    /// is compiled, on the stack: a count that is not itself one of the sizes in the engine of the
+    /// next size up, with padding coordinates that it hides ([`crate::padding`]). Above, it runs in a
+    /// dimension chosen at run time ([`crate::dim::Dynamic`], [`ExpressionLagrangian`]).
     ///
     /// ```
     /// use ddirac::expression::{ExpressionError, ExpressionSpec};
@@ -214,13 +206,13 @@ impl ExpressionSpec {
     /// };
     /// assert_eq!(chain(24).into_dyn().unwrap().coordinates().len(), 24);
     /// assert_eq!(chain(17).into_dyn().unwrap().coordinates().len(), 17);
-    /// let error = chain(101).into_dyn().err().unwrap();
-    /// assert!(matches!(error, ExpressionError::UnsupportedSize { found: 101 }));
+    /// assert_eq!(chain(150).into_dyn().unwrap().coordinates().len(), 150);
     /// ```
     pub fn into_dyn(self) -> Result<Box<dyn DynSystem>, ExpressionError> {
-        let found = self.coordinates.len();
-        let size = crate::sizes::engine_size(found).ok_or(ExpressionError::UnsupportedSize { found })?;
-        self.into_dyn_in(size)
+        match crate::sizes::engine_size(self.coordinates.len()) {
+            Some(size) => self.into_dyn_in(size),
+            None => Ok(Box::new(ErasedDynamic(ExpressionLagrangian::from_compiled(compile(&self)?)))),
+        }
     }
 
     /// [`ExpressionSpec::into_dyn`] in the engine of `size` coordinates, one of [`crate::SIZES`] and
@@ -257,6 +249,11 @@ impl ExpressionSpec {
         let inner = crate::sizes::with_sizes!(dispatch);
         Ok(if own.len() == size { inner } else { Box::new(crate::padding::Padded { inner, own, size }) })
     }
+}
+
+/// The exact solution of coordinate `i` at `t`, if the spec gives one.
+pub(super) fn exact_at(exact: &[Option<CompiledExpression>], i: usize, t: f64) -> Option<f64> {
+    exact.get(i)?.as_ref().map(|program| program.eval(&[t]))
 }
 
 /// L(q, v) of the spec's own `n` coordinates (the first n entries of `q` and `v`): with the

@@ -165,8 +165,17 @@ impl<S> DiscreteLagrangian<S> {
     where
         S: System<N>,
     {
-        let (base, d1): ([f64; N], [f64; N]) = (*q0, std::array::from_fn(|i| q1[i] - q0[i]));
-        self.eval_local(&base, &[0.0; N], &d1)
+        self.value_in::<Fixed<N>>(q0, q1)
+    }
+
+    /// [`DiscreteLagrangian::value`] in any dimension.
+    pub fn value_in<Dm: Dim>(&self, q0: &Dm::Array<f64>, q1: &Dm::Array<f64>) -> f64
+    where
+        S: Lagrangian<Dm>,
+    {
+        let dim = Dm::of(q0);
+        let d1 = dim.array(|i| q1[i] - q0[i]);
+        self.eval_in::<Dm, f64, f64>(q0, &dim.array(|_| 0.0), &d1)
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (base + δ0, base + δ1), by automatic differentiation
@@ -194,7 +203,20 @@ impl<S> DiscreteLagrangian<S> {
     where
         S: System<N>,
     {
-        ad::first(Fixed, &Local { ld: self, base }, &(*d0).into(), &(*d1).into())
+        self.first_derivatives_in(base, &(*d0).into(), &(*d1).into())
+    }
+
+    /// [`DiscreteLagrangian::first_derivatives_local`] in any dimension, the offsets as arrays.
+    pub fn first_derivatives_in<Dm: Dim>(
+        &self,
+        base: &Dm::Array<f64>,
+        d0: &Dm::Array<f64>,
+        d1: &Dm::Array<f64>,
+    ) -> ad::FirstDerivatives<Dm>
+    where
+        S: Lagrangian<Dm>,
+    {
+        ad::first(Dm::of(base), &Local { ld: self, base }, d0, d1)
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).
@@ -208,13 +230,13 @@ impl<S> DiscreteLagrangian<S> {
 }
 
 /// L_d(base + δ0, base + δ1) as a function of the offsets (δ0, δ1).
-struct Local<'l, S, const N: usize> {
+struct Local<'l, S, Dm: Dim> {
     ld: &'l DiscreteLagrangian<S>,
-    base: &'l [f64; N],
+    base: &'l Dm::Array<f64>,
 }
 
-impl<S: System<N>, const N: usize> PairFunction<Fixed<N>> for Local<'_, S, N> {
-    fn eval<D: Scalar>(&self, a: &[D; N], b: &[D; N]) -> D {
-        self.ld.eval_local(self.base, a, b)
+impl<S: Lagrangian<Dm>, Dm: Dim> PairFunction<Dm> for Local<'_, S, Dm> {
+    fn eval<D: Scalar>(&self, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D {
+        self.ld.eval_in::<Dm, D, f64>(self.base, a, b)
     }
 }

@@ -68,8 +68,18 @@ fn velocity_gradient<Dm: Dim, S: Lagrangian<Dm>>(
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
 /// Lagrangian is linear in the velocities.
 pub fn rank<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> usize {
-    let hess = velocity_hessian(system, q, v).2;
-    crate::linalg::solve(Fixed::<N>, &hess, &SVector::zeros(), 1e-10).map_or(0, |(_, rank)| rank)
+    rank_in(Fixed, system, q, v)
+}
+
+/// [`rank`] in any dimension.
+pub(crate) fn rank_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+) -> usize {
+    let hess = velocity_hessian_in(dim, system, q, v).2;
+    crate::linalg::solve(dim, &hess, &dim.zeros(), 1e-10).map_or(0, |(_, rank)| rank)
 }
 
 /// Whether the Legendre transform is regular at (q, v): ∂²L/∂v² has full rank.
@@ -98,8 +108,18 @@ pub fn is_regular<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f
 /// assert!((ratio - 0.01f64.sin().powi(2)).abs() < 1e-15 && along == 1);
 /// ```
 pub fn conditioning<S: System<N>, const N: usize>(system: &S, q: &[f64; N], v: &[f64; N]) -> (f64, usize) {
-    let hess = velocity_hessian(system, q, v).2;
-    Factorization::new(Fixed::<N>, &hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
+    conditioning_in(Fixed, system, q, v)
+}
+
+/// [`conditioning`] in any dimension.
+pub(crate) fn conditioning_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
+) -> (f64, usize) {
+    let hess = velocity_hessian_in(dim, system, q, v).2;
+    Factorization::new(dim, &hess, 0.0).map_or((0.0, 0), |lu| lu.smallest_pivot())
 }
 
 pub(crate) fn velocity_hessian<S: System<N>, const N: usize>(
@@ -199,8 +219,18 @@ pub(crate) fn velocity_in<Dm: Dim, S: Lagrangian<Dm>>(
 /// assert!((h - 0.5).abs() < 1e-14);
 /// ```
 pub fn hamiltonian<S: System<N>, const N: usize>(system: &S, q: &[f64; N], p: &[f64; N]) -> f64 {
-    let (v, _) = velocity(system, q, p);
-    let pv: f64 = p.iter().zip(&v).map(|(a, b)| a * b).sum();
+    hamiltonian_in(Fixed, system, q, p)
+}
+
+/// [`hamiltonian`] in any dimension.
+pub(crate) fn hamiltonian_in<Dm: Dim, S: Lagrangian<Dm>>(
+    dim: Dm,
+    system: &S,
+    q: &Dm::Array<f64>,
+    p: &Dm::Array<f64>,
+) -> f64 {
+    let (v, _) = velocity_in(dim, system, q, p);
+    let pv: f64 = p.as_ref().iter().zip(v.as_ref()).map(|(a, b)| a * b).sum();
     pv - system.lagrangian(q, &v)
 }
 

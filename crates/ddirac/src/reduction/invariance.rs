@@ -14,8 +14,10 @@
 //! [`ENOUGH`](crate::sampling::ENOUGH) pairs where L_d is finite: with fewer the check
 //! could not decide, and a reduced run is refused unless the check is explicitly turned off.
 
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::Lagrangian;
 use crate::sampling::{ratio, relative_change, Deviation, Sample, Uniform};
-use crate::{DiscreteLagrangian, Split, System};
+use crate::{DiscreteLagrangian, Split};
 
 /// Relative tolerance of the invariance deviation.
 pub const INVARIANCE_TOLERANCE: f64 = 1e-9;
@@ -23,10 +25,10 @@ pub const INVARIANCE_TOLERANCE: f64 = 1e-9;
 /// The invariance deviation of L_d under translations of each group coordinate alone, over the
 /// pairs `samples` (from [`crate::sampling::near`]): one [`Deviation`] per group coordinate, in the order of
 /// `split.group`.
-pub fn invariance_deviations<S: System<N>, const N: usize>(
+pub fn invariance_deviations<S: Lagrangian<Dm>, Dm: Dim>(
     ld: &DiscreteLagrangian<S>,
     split: &Split,
-    samples: &[Sample<N>],
+    samples: &[Sample<Dm>],
 ) -> Vec<Deviation> {
     let mut uniform = Uniform::new();
     split
@@ -37,10 +39,10 @@ pub fn invariance_deviations<S: System<N>, const N: usize>(
                 let infinitesimal = ratio((sample.derivatives.da[g] + sample.derivatives.db[g]).abs(), sample.slope());
                 let u = uniform.next();
                 let shift = u.signum() * (0.25 + 2.75 * u.abs());
-                let (mut s0, mut s1) = (sample.q0, sample.q1);
+                let (mut s0, mut s1) = (sample.q0.clone(), sample.q1.clone());
                 s0[g] += shift;
                 s1[g] += shift;
-                let finite = relative_change(sample, ld.value(&s0, &s1), shift);
+                let finite = relative_change(sample, ld.value_in::<Dm>(&s0, &s1), shift);
                 worst.max(infinitesimal).max(finite)
             });
             Deviation { coordinate: g, deviation: worst, samples: samples.len() }

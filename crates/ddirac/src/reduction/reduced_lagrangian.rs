@@ -12,7 +12,7 @@
 //!
 
 use crate::dim::{Dim, Entry, Fixed};
-use crate::mechanics::lagrangian::Lagrangian;
+use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
 use crate::Scalar;
 
 use crate::{Connection, DiscreteLagrangian, Error, Input, Rule, Split, System};
@@ -43,11 +43,11 @@ pub struct ReducedLagrangian<S> {
 impl<S> ReducedLagrangian<S> {
     /// L_d of `system` by `rule` with step `step`, reduced with `connection`, whose size must match the
     /// system's shape and group coordinates.
-    pub fn new<const N: usize>(system: S, rule: Rule, step: f64, connection: Connection) -> Result<Self, Error>
+    pub fn new<Dm: Dim>(system: S, rule: Rule, step: f64, connection: Connection) -> Result<Self, Error>
     where
-        S: System<N>,
+        S: SystemIn<Dm>,
     {
-        let split = Split::new(&system.coordinates());
+        let split = Split::new(system.coordinates().as_ref());
         if (connection.n_x(), connection.n_g()) != (split.n_x(), split.n_g()) {
             return Err(Error::Invalid {
                 what: Input::Connection,

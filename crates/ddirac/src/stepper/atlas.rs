@@ -8,11 +8,13 @@
 //! an atlas, or with `method.atlas = false`, is its main chart's stepper alone, step for step.
 
 use super::progress::{Progress, Record};
-use super::{ChartStepper, OwnedRow, State, StepReport};
+use super::{ChartStepper, OwnedRowIn, StateIn, StepReport};
 use crate::atlas::{self, InChart, SWITCH_BELOW};
 use crate::diagnostics::{Row, Summary};
+use crate::dim::{Dim, Fixed};
 use crate::integrator::OutputError;
-use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split, System};
+use crate::mechanics::lagrangian::SystemIn;
+use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split};
 
 /// How far (relative) a point may come back from a chart's maps there and back and still count as in
 /// the chart.
@@ -58,20 +60,21 @@ const DOMAIN_TOLERANCE: f64 = 1e-6;
 /// // Paper, Table 1: N = 200 → 0.01664
 /// assert!((again.finish().unwrap().reference_error.unwrap() - 0.01664).abs() < 5e-6);
 /// ```
-pub struct Stepper<S, const N: usize> {
+pub struct StepperIn<S, Dm: Dim> {
     system: S,
+    dim: Dm,
     problem: Problem,
     method: Method,
     /// The stepper of each chart the run has entered (index: the chart; 0 is the main chart).
-    charts: Vec<Option<ChartStepper<InChart<S, N>, N>>>,
+    charts: Vec<Option<ChartStepper<InChart<S, Dm>, Dm>>>,
     current: usize,
     /// Whether the run switches charts: the system has an atlas and the method asks for it.
     switching: bool,
     /// The current point in the main chart, followed step by step outside it (continuous angles).
-    near: [f64; N],
+    near: Dm::Array<f64>,
     split: Split,
     /// The kinds of the main chart's coordinates.
-    kinds: [CoordinateKind; N],
+    kinds: Dm::Array<CoordinateKind>,
     /// Whether the momentum map is p_g in each chart: it has the main chart's number of group
     /// coordinates (else it is measured in the main chart after each step there).
     carries_momentum: Vec<bool>,
@@ -79,31 +82,37 @@ pub struct Stepper<S, const N: usize> {
     switches: usize,
     /// The progress of the current chart before its last step, kept to take the step again in
     /// another chart (one buffer, refilled at every step).
-    before: Option<Progress<N>>,
+    before: Option<Progress<Dm>>,
 }
 
-impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
+/// A run of a system of `N` coordinates ([`StepperIn`] in a fixed dimension).
+pub type Stepper<S, const N: usize> = StepperIn<S, Fixed<N>>;
+
+impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
     /// first step: an error for input that a run refuses, or for a hypothesis that fails
     /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary). With an atlas,
     /// the run starts in the best chart at the initial point.
     pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
-        crate::stack::enough::<N, _>(|| Self::new_here(system, problem, method))
+        crate::stack::enough(system.dim(), || Self::new_here(system, problem, method))
     }
 
     fn new_here(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
         let main = ChartStepper::new(InChart::new(system.clone(), 0), problem, method)?;
         let extra = system.charts().len();
         let near = main.progress.config.unwrapped();
-        let split = Split::new(&system.coordinates());
-        let kinds = system.coordinates().map(|c| c.kind);
+        let dim = system.dim();
+        let coordinates = system.coordinates();
+        let split = Split::new(coordinates.as_ref());
+        let kinds = dim.array(|i| coordinates[i].kind);
         let carries_momentum =
-            atlas::all_charts(&system).iter().map(|c| Split::new(&c.coordinates).n_g() == split.n_g()).collect();
+            atlas::all_charts(&system).iter().map(|c| Split::new(c.as_ref()).n_g() == split.n_g()).collect();
         let mut charts = vec![Some(main)];
         charts.resize_with(extra + 1, || None);
         let switching = method.atlas && extra > 0;
         let mut stepper = Self {
             system,
+            dim,
             problem: problem.clone(),
             method: method.clone(),
             charts,
@@ -123,11 +132,11 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         Ok(stepper)
     }
 
-    fn chart(&self) -> &ChartStepper<InChart<S, N>, N> {
+    fn chart(&self) -> &ChartStepper<InChart<S, Dm>, Dm> {
         self.charts[self.current].as_ref().expect("the current chart has a stepper")
     }
 
-    fn chart_mut(&mut self) -> &mut ChartStepper<InChart<S, N>, N> {
+    fn chart_mut(&mut self) -> &mut ChartStepper<InChart<S, Dm>, Dm> {
         self.charts[self.current].as_mut().expect("the current chart has a stepper")
     }
 
@@ -148,6 +157,11 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// The current time t_k = k h.
     pub fn t(&self) -> f64 {
         self.chart().t()
+    }
+
+    /// The dimension: the number of coordinates.
+    pub fn dim(&self) -> Dm {
+        self.dim
     }
 
     /// The number of steps N of the problem.
@@ -175,7 +189,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// retries the step bit for bit); an energy jump is reported once the step that shows it is taken.
     #[inline]
     pub fn step(&mut self) -> Result<StepReport, Error> {
-        crate::stack::enough::<N, _>(|| self.step_here())
+        crate::stack::enough(self.dim, || self.step_here())
     }
 
     fn step_here(&mut self) -> Result<StepReport, Error> {
@@ -187,8 +201,8 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         // predicted midpoint, and the step is taken again in another chart if the midpoint of the
         // step taken prefers that one.
         let chart = self.chart();
-        let q = chart.progress.config.unwrapped();
-        let midpoint = |dq: [f64; N]| -> [f64; N] { std::array::from_fn(|i| q[i] + 0.5 * dq[i]) };
+        let (q, dim) = (chart.progress.config.unwrapped(), self.dim);
+        let midpoint = |dq: Dm::Array<f64>| -> Dm::Array<f64> { dim.array(|i| q[i] + 0.5 * dq[i]) };
         let target = self.preferred_chart(&midpoint(chart.predicted_increment()));
         if target != self.current {
             self.switch_to(target)?;
@@ -203,7 +217,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         }
         let report = self.chart_mut().step()?;
         let taken = self.chart().progress.config.unwrapped();
-        let target = self.preferred_chart(&midpoint(std::array::from_fn(|i| taken[i] - q[i])));
+        let target = self.preferred_chart(&midpoint(dim.array(|i| taken[i] - q[i])));
         if target != self.current {
             let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
             std::mem::swap(&mut chart.progress, self.before.as_mut().expect("saved before the step"));
@@ -234,7 +248,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     }
 
     /// The configuration (unwrapped) and canonical momenta of the current chart.
-    fn chart_state(&self) -> ([f64; N], [f64; N]) {
+    fn chart_state(&self) -> (Dm::Array<f64>, Dm::Array<f64>) {
         let chart = self.chart();
         let p = chart.p();
         (chart.progress.config.unwrapped(), p)
@@ -243,14 +257,14 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// The measure of chart `chart` at the main-chart point `main`, if the point is in the chart:
     /// its maps take it there and back (a chart's ψ may be defined beyond its domain, as the
     /// projection of a hemisphere is on the other one).
-    fn quality_at(&self, chart: usize, main: &[f64; N]) -> Option<f64> {
+    fn quality_at(&self, chart: usize, main: &Dm::Array<f64>) -> Option<f64> {
         if chart == 0 {
             return Some(self.system.chart_quality(0, main)).filter(|q| q.is_finite());
         }
         let there = atlas::point(&self.system, 0, chart, main);
         let back = self.system.nearest_in_main(atlas::point(&self.system, chart, 0, &there), main, &self.kinds);
-        let scale = main.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        let apart = back.iter().zip(main).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let scale = main.as_ref().iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let apart = back.as_ref().iter().zip(main.as_ref()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         let quality = self.system.chart_quality(chart, &there);
         (apart <= DOMAIN_TOLERANCE * scale && quality.is_finite()).then_some(quality)
     }
@@ -259,8 +273,8 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// alone: the main chart where its measure is at least [`SWITCH_BELOW`]; else the chart with the
     /// largest measure among those that carry the momentum map (have the main chart's group
     /// coordinates), if that is at least [`SWITCH_BELOW`]; else the chart with the largest measure.
-    fn preferred_chart(&self, q: &[f64; N]) -> usize {
-        let main = if self.current == 0 { *q } else { atlas::point(&self.system, self.current, 0, q) };
+    fn preferred_chart(&self, q: &Dm::Array<f64>) -> usize {
+        let main = if self.current == 0 { q.clone() } else { atlas::point(&self.system, self.current, 0, q) };
         let qualities = (0..self.charts.len()).filter_map(|c| self.quality_at(c, &main).map(|quality| (c, quality)));
         let (mut carrying, mut any) = (None::<(usize, f64)>, None::<(usize, f64)>);
         for (chart, quality) in qualities {
@@ -307,7 +321,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         }
         let record = self.chart_mut().progress.record.clone();
         let stepper = self.charts[to].as_mut().expect("prepared");
-        stepper.restart(&State::new(k, q_to, p_to))?;
+        stepper.restart(&StateIn::new(k, q_to, p_to))?;
         stepper.progress.record = record;
         if self.current == 0 {
             self.near = q;
@@ -319,23 +333,28 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
 
     /// The stepper of chart `chart`, prepared at (q, p) of that chart: the method of the run, without
     /// the main chart's connection, and unreduced in a chart without group coordinates.
-    fn prepare(&self, chart: usize, q: &[f64; N], p: &[f64; N]) -> Result<ChartStepper<InChart<S, N>, N>, Error> {
+    fn prepare(
+        &self,
+        chart: usize,
+        q: &Dm::Array<f64>,
+        p: &Dm::Array<f64>,
+    ) -> Result<ChartStepper<InChart<S, Dm>, Dm>, Error> {
         let in_chart = InChart::new(self.system.clone(), chart);
-        let has_group = Split::new(&in_chart.coordinates()).n_g() > 0;
+        let has_group = Split::new(in_chart.coordinates().as_ref()).n_g() > 0;
         let method = Method { connection: None, reduced: self.method.reduced && has_group, ..self.method.clone() };
-        let problem =
-            Problem { q0: q.to_vec(), initial: InitialMomentum::Momentum(p.to_vec()), ..self.problem.clone() };
+        let (q0, p0) = (q.as_ref().to_vec(), p.as_ref().to_vec());
+        let problem = Problem { q0, initial: InitialMomentum::Momentum(p0), ..self.problem.clone() };
         ChartStepper::new(in_chart, &problem, &method)
     }
 
     /// The row of the current step k in the main chart: q_k, p_k, the Hamiltonian, the momentum map
     /// and the chart the step is in (the discrete energy of step k is known once it is taken:
     /// [`StepReport::discrete_energy`]). The summary's energy statistics are over the rows taken.
-    pub fn row(&mut self) -> OwnedRow<N> {
-        crate::stack::enough::<N, _>(|| self.row_here())
+    pub fn row(&mut self) -> OwnedRowIn<Dm> {
+        crate::stack::enough(self.dim, || self.row_here())
     }
 
-    fn row_here(&mut self) -> OwnedRow<N> {
+    fn row_here(&mut self) -> OwnedRowIn<Dm> {
         let current = self.current;
         let mut row = self.chart_mut().row();
         if current == 0 {
@@ -345,9 +364,10 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         if let Some((_, p_main)) = atlas::transition(&self.system, current, 0, &q, &p) {
             row.p = p_main;
         }
-        row.q = if self.wrap_angles { wrapped(&self.system, self.near) } else { self.near };
-        row.momentum_map = [0.0; N];
-        row.momentum_map.iter_mut().zip(self.split.momentum_map(&row.p)).for_each(|(slot, j)| *slot = j);
+        row.q = if self.wrap_angles { wrapped(&self.kinds, self.near.clone()) } else { self.near.clone() };
+        row.momentum_map = self.dim.array(|_| 0.0);
+        let j = self.split.momentum_map(row.p.as_ref());
+        row.momentum_map.as_mut().iter_mut().zip(j).for_each(|(slot, j)| *slot = j);
         row.n_g = self.split.n_g();
         row.chart = current;
         row
@@ -364,7 +384,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
         watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
     ) -> Result<(), Error> {
-        crate::stack::enough::<N, _>(|| self.run_to_end_here(every, observer, watch))
+        crate::stack::enough(self.dim, || self.run_to_end_here(every, observer, watch))
     }
 
     fn run_to_end_here(
@@ -397,18 +417,18 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
 
     /// The state of step k in the main chart, with all that a stepper of the same system, method and
     /// step needs to continue from it bit for bit (the chart it is in too).
-    pub fn state(&self) -> State<N> {
+    pub fn state(&self) -> StateIn<Dm> {
         let mut state = self.chart().state();
         if self.current != 0 {
             let (q, p) = self.chart_state();
             if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
                 state.p = p_main;
             }
-            state.q = self.near;
+            state.q = self.near.clone();
         }
         if let Some(memory) = &mut state.memory {
             memory.chart = self.current;
-            memory.near = self.near;
+            memory.near = self.near.clone();
         }
         state
     }
@@ -425,14 +445,14 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
     /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
     /// are not tested again for a cold state.
-    pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
-        crate::stack::enough::<N, _>(|| self.restart_here(state))
+    pub fn restart(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
+        crate::stack::enough(self.dim, || self.restart_here(state))
     }
 
-    fn restart_here(&mut self, state: &State<N>) -> Result<(), Error> {
+    fn restart_here(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
         let Some(memory) = &state.memory else {
             self.charts[0].as_mut().expect("the main chart has a stepper").restart(state)?;
-            (self.current, self.near) = (0, state.q);
+            (self.current, self.near) = (0, state.q.clone());
             return if self.switching { self.choose_chart() } else { Ok(()) };
         };
         let chart = memory.chart;
@@ -448,7 +468,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
             self.charts[chart] = Some(self.prepare(chart, &q, &p)?);
         }
         self.charts[chart].as_mut().expect("prepared").restart(state)?;
-        (self.current, self.near) = (chart, memory.near);
+        (self.current, self.near) = (chart, memory.near.clone());
         Ok(())
     }
 
@@ -463,7 +483,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// and the check of the method's hypotheses near its initial data are tested anew). The main
     /// chart's derivatives are what is kept; the other charts are prepared anew when entered.
     pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
-        crate::stack::enough::<N, _>(|| self.renew_here(problem))
+        crate::stack::enough(self.dim, || self.renew_here(problem))
     }
 
     fn renew_here(&mut self, problem: &Problem) -> Result<bool, Error> {
@@ -491,7 +511,7 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
     /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
     /// restarted.
     pub fn summary(&mut self) -> Result<Summary, Error> {
-        crate::stack::enough::<N, _>(|| self.summary_here())
+        crate::stack::enough(self.dim, || self.summary_here())
     }
 
     fn summary_here(&mut self) -> Result<Summary, Error> {
@@ -499,23 +519,27 @@ impl<S: System<N> + Clone, const N: usize> Stepper<S, N> {
         summary.chart_switches = self.switches;
         if self.current != 0 {
             let state = self.state();
-            summary.coordinates = self.system.coordinates().iter().map(|c| c.name.clone()).collect();
-            summary.final_q = if self.wrap_angles { wrapped(&self.system, state.q) } else { state.q }.to_vec();
-            summary.final_p = state.p.to_vec();
+            summary.coordinates = self.system.coordinates().as_ref().iter().map(|c| c.name.clone()).collect();
+            let final_q = if self.wrap_angles { wrapped(&self.kinds, state.q.clone()) } else { state.q.clone() };
+            summary.final_q = final_q.as_ref().to_vec();
+            summary.final_p = state.p.as_ref().to_vec();
             let Record { start: (k0, q0, p0), .. } = &self.chart().progress.record;
             let t = (state.k - k0) as f64 * self.problem.step;
-            summary.reference_error = self.system.exact_solution(q0, p0, t).and_then(|exact| {
-                let terms: Vec<f64> =
-                    exact.iter().zip(&state.q).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
-                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
-            });
+            summary.reference_error = self
+                .system
+                .exact_solution(q0, p0, t)
+                .and_then(|exact| super::reference_error(exact.as_ref(), state.q.as_ref()));
         }
         Ok(summary)
     }
 }
 
 /// A main-chart configuration with its angles wrapped to (−π, π].
-fn wrapped<S: System<N>, const N: usize>(system: &S, q: [f64; N]) -> [f64; N] {
-    let kinds = system.coordinates().map(|c| c.kind);
-    std::array::from_fn(|i| if kinds[i] == crate::CoordinateKind::Angle { crate::chart::wrap(q[i]) } else { q[i] })
+fn wrapped<A: AsMut<[f64]>>(kinds: &impl AsRef<[CoordinateKind]>, mut q: A) -> A {
+    for (q, kind) in q.as_mut().iter_mut().zip(kinds.as_ref()) {
+        if *kind == CoordinateKind::Angle {
+            *q = crate::chart::wrap(*q);
+        }
+    }
+    q
 }

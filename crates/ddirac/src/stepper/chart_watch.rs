@@ -11,8 +11,10 @@
 //!   start of the run: near a pole of spherical coordinates its smallest pivot falls like sin²θ,
 //!   along the azimuth.
 
+use crate::dim::Dim;
+use crate::mechanics::lagrangian::SystemIn;
 use crate::mechanics::legendre;
-use crate::{CoordinateKind, System};
+use crate::CoordinateKind;
 
 /// The largest advance of an angle in one step, in radians, that a run accepts without a warning. A
 /// second-order step that turns an angle by a radian resolves a period with about six steps.
@@ -25,7 +27,7 @@ pub const LEGENDRE_DROP: f64 = 1e-2;
 /// Whether an angle advanced by more than [`MAX_ANGLE_STEP`] in the step `dq`; `angles` is 1 at the
 /// angles and 0 elsewhere. Branch-free over the coordinates: it runs every step.
 #[inline(always)]
-pub(super) fn races<const N: usize>(angles: &[f64; N], dq: &[f64; N]) -> bool {
+pub(super) fn races(angles: &[f64], dq: &[f64]) -> bool {
     let mut largest = 0.0f64;
     for (a, d) in angles.iter().zip(dq) {
         let turned = a * d.abs();
@@ -36,8 +38,8 @@ pub(super) fn races<const N: usize>(angles: &[f64; N], dq: &[f64; N]) -> bool {
 
 /// The angle that advanced most in the step `dq`, and by how much.
 #[cold]
-pub(super) fn fastest_angle<const N: usize>(kinds: &[CoordinateKind; N], dq: &[f64; N]) -> (usize, f64) {
-    let angles = (0..N).filter(|&i| kinds[i] == CoordinateKind::Angle);
+pub(super) fn fastest_angle(kinds: &[CoordinateKind], dq: &[f64]) -> (usize, f64) {
+    let angles = (0..kinds.len()).filter(|&i| kinds[i] == CoordinateKind::Angle);
     let i = angles.max_by(|&i, &j| dq[i].abs().total_cmp(&dq[j].abs())).unwrap_or(0);
     (i, dq[i])
 }
@@ -46,18 +48,19 @@ pub(super) fn fastest_angle<const N: usize>(kinds: &[CoordinateKind; N], dq: &[f
 /// it degenerates along, when the ratio has fallen below [`LEGENDRE_DROP`] of `at_start` (a regular
 /// start; a Lagrangian degenerate from the start has nothing to compare with).
 #[cold]
-pub(super) fn singular_chart<S: System<N>, const N: usize>(
+pub(super) fn singular_chart<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     at_start: f64,
-    q: &[f64; N],
-    v: &[f64; N],
+    q: &Dm::Array<f64>,
+    v: &Dm::Array<f64>,
 ) -> Option<String> {
-    if at_start.is_nan() || at_start <= 0.0 || v.iter().any(|x| !x.is_finite()) {
+    if at_start.is_nan() || at_start <= 0.0 || v.as_ref().iter().any(|x| !x.is_finite()) {
         return None;
     }
-    let (ratio, along) = legendre::conditioning(system, q, v);
+    let (ratio, along) = legendre::conditioning_in(system.dim(), system, q, v);
     (ratio < LEGENDRE_DROP * at_start).then(|| {
-        let name = &system.coordinates()[along].name;
+        let coordinates = system.coordinates();
+        let name = &coordinates[along].name;
         format!(
             "the Legendre map ∂²L/∂v² is near-singular here (its smallest pivot is {ratio:.1e} of its largest, \
              against {at_start:.1e} at the start), along `{name}`: the coordinates are singular nearby (a pole \

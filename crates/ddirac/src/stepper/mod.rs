@@ -19,52 +19,53 @@ mod state;
 
 use std::time::Instant;
 
-use crate::chart::Configuration;
+use crate::chart::ConfigurationIn;
 use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning};
-use crate::dim::Fixed;
+use crate::dim::Dim;
 use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
+use crate::mechanics::lagrangian::SystemIn;
 use crate::mechanics::legendre;
 use crate::reduction::reduced::LagrangePoincareDirac;
 use crate::reduction::reduced_lagrangian::ReducedLagrangian;
 use crate::scheme::{Scheme, StepDerivatives, StepEquations};
 use crate::{
     newton, Connection, CoordinateKind, DiscreteLagrangian, Error, InitialMomentum, Input, Method, Problem, Split,
-    System,
 };
 
-pub use atlas::Stepper;
+pub use atlas::{Stepper, StepperIn};
 pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
 pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
 use stages::Stages;
 pub use stages::MAX_SUBDIVISION;
 use state::Memory;
-pub use state::{OwnedRow, State, StepReport};
+pub use state::{OwnedRow, OwnedRowIn, State, StateIn, StepReport};
 
 /// What a run needs before its first step: validated initial data, the split, the connection and a
 /// first-step increment h · v0 for the predictor.
-pub(crate) struct Setup<const N: usize> {
+pub(crate) struct Setup<Dm: Dim> {
     pub split: Split,
-    pub q0: [f64; N],
-    pub p0: [f64; N],
+    pub q0: Dm::Array<f64>,
+    pub p0: Dm::Array<f64>,
     /// h · v0 with v0 from the inverse Legendre transform (0 where it is not finite).
-    pub dq0: [f64; N],
+    pub dq0: Dm::Array<f64>,
     pub connection: Connection,
 }
 
-impl<const N: usize> Setup<N> {
-    pub(crate) fn new<S: System<N>>(system: &S, problem: &Problem, method: &Method) -> Result<Self, Error> {
-        problem.validate(N)?;
+impl<Dm: Dim> Setup<Dm> {
+    pub(crate) fn new<S: SystemIn<Dm>>(system: &S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let dim = system.dim();
+        problem.validate(dim.n())?;
         stages::check_symmetric(method)?;
-        let split = Split::new(&system.coordinates());
-        let sized = |v: &[f64]| -> [f64; N] { v.try_into().expect("validated size") };
+        let split = Split::new(system.coordinates().as_ref());
+        let sized = |v: &[f64]| -> Dm::Array<f64> { dim.array(|i| v[i]) };
         let q0 = sized(&problem.q0);
         let p0 = match &problem.initial {
             InitialMomentum::Momentum(p) => sized(p),
             InitialMomentum::Velocity(v) => {
-                let p0 = legendre::momentum(system, &q0, &sized(v));
-                if let Some((i, &value)) = p0.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                let p0 = legendre::momentum_in(dim, system, &q0, &sized(v));
+                if let Some((i, &value)) = p0.as_ref().iter().enumerate().find(|(_, x)| !x.is_finite()) {
                     return Err(Error::NonFinite { what: Input::MomentumFromVelocity, entry: Some(i), value });
                 }
                 p0
@@ -75,45 +76,45 @@ impl<const N: usize> Setup<N> {
             None => Connection::zero(split.n_x(), split.n_g()),
         };
         connection.check_axioms()?;
-        let (v0, _) = legendre::velocity(system, &q0, &p0);
-        let dq0 = first_increment(&v0, problem.step);
+        let (v0, _) = legendre::velocity_in(dim, system, &q0, &p0);
+        let dq0 = first_increment::<Dm>(&v0, problem.step);
         Ok(Self { split, q0, p0, dq0, connection })
     }
 }
 
 /// h · v, 0 where v is not finite: the predictor of a first step, with v from the inverse Legendre
 /// transform.
-fn first_increment<const N: usize>(v: &[f64; N], h: f64) -> [f64; N] {
-    std::array::from_fn(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
+fn first_increment<Dm: Dim>(v: &Dm::Array<f64>, h: f64) -> Dm::Array<f64> {
+    Dm::of(v).array(|i| if v[i].is_finite() { v[i] * h } else { 0.0 })
 }
 
 /// A run in one chart of the system's atlas ([`crate::atlas::InChart`]): what [`Stepper`] does between chart
 /// switches, and all of a run without them.
-pub(crate) struct ChartStepper<S, const N: usize> {
-    context: Context<S, N>,
-    schemes: Schemes<S, N>,
+pub(crate) struct ChartStepper<S, Dm: Dim> {
+    context: Context<S, Dm>,
+    schemes: Schemes<S, Dm>,
     derivative_path: DerivativePath,
     /// The Jacobian memory of a first step: none kept, with the relative cost of the derivatives.
-    fresh_kept: newton::KeptJacobian<Fixed<N>>,
+    fresh_kept: newton::KeptJacobian<Dm>,
     /// The warnings of the check before the first step, with which every record starts.
     check_warnings: Vec<Warning>,
     started: Instant,
-    progress: Progress<N>,
+    progress: Progress<Dm>,
 }
 
 /// The schemes of a run's sub-steps with their step equations and derivatives: unreduced or reduced.
-enum Schemes<S, const N: usize> {
-    Unreduced(Stages<LagrangeDirac<S, Fixed<N>>, N>),
-    Reduced(Stages<LagrangePoincareDirac<S, Fixed<N>>, N>),
+enum Schemes<S, Dm: Dim> {
+    Unreduced(Stages<LagrangeDirac<S, Dm>, Dm>),
+    Reduced(Stages<LagrangePoincareDirac<S, Dm>, Dm>),
 }
 
-struct Equipped<Sc, const N: usize> {
+struct Equipped<Sc, Dm: Dim> {
     scheme: Sc,
-    equations: StepEquations<Fixed<N>>,
-    derivatives: StepDerivatives<Fixed<N>>,
+    equations: StepEquations<Dm>,
+    derivatives: StepDerivatives<Dm>,
     /// The scheme momenta the derivatives were prepared with: a compiled closed-form step holds the
     /// conserved ones (μ) as constants.
-    prepared: [f64; N],
+    prepared: Dm::Array<f64>,
     /// Whether the closed-form step, if there is one, serves the current state: its conserved
     /// momenta are those it was prepared with.
     closed_form: bool,
@@ -132,71 +133,80 @@ macro_rules! equipped {
 }
 
 /// What the steps and rows of a stepper read but do not change.
-struct Context<S, const N: usize> {
+struct Context<S, Dm: Dim> {
     system: S,
+    dim: Dm,
     method: Method,
     h: f64,
     steps: usize,
     split: Split,
-    kinds: [CoordinateKind; N],
+    kinds: Dm::Array<CoordinateKind>,
     wrap_angles: bool,
     /// 1 at the angles, 0 elsewhere ([`chart_watch::races`]).
-    angles: [f64; N],
+    angles: Dm::Array<f64>,
     /// The Legendre map's pivot ratio at the start of the run ([`legendre::conditioning`]), what the
     /// chart watch compares with.
     legendre_at_start: f64,
 }
 
-impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
+impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
     /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
     /// first step: an error for input that a run refuses, or for a hypothesis that fails
     /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary).
     pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let dim = system.dim();
         let setup = Setup::new(&system, problem, method)?;
         let check_warnings = crate::check::findings(&system, problem, method, &setup).verdict(method)?;
         let coordinates = system.coordinates();
-        let kinds = coordinates.each_ref().map(|c| c.kind);
+        let kinds = dim.array(|i| coordinates[i].kind);
         let (h, steps) = (problem.step, problem.steps);
-        let legendre_at_start = legendre::conditioning(&system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
+        let v0 = dim.array(|i| setup.dq0[i] / h);
+        let legendre_at_start = legendre::conditioning_in(dim, &system, &setup.q0, &v0).0;
         let started = Instant::now();
-        let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
-        let first = FirstStep { q: Configuration::new(setup.q0, kinds), p: setup.p0, dq: setup.dq0 };
+        let (start, warnings) = ((0, setup.q0.clone(), setup.p0.clone()), check_warnings.clone());
+        let first = FirstStep {
+            q: ConfigurationIn::new(setup.q0.clone(), kinds.clone()),
+            p: setup.p0.clone(),
+            dq: setup.dq0.clone(),
+        };
         let (schemes, derivative_path) = if method.reduced {
             let scheme = |step| -> Result<_, Error> {
                 let reduction = ReducedLagrangian::new(system.clone(), method.rule, step, setup.connection.clone())?;
-                Ok(LagrangePoincareDirac::new(Fixed, reduction, method.variant))
+                Ok(LagrangePoincareDirac::new(dim, reduction, method.variant))
             };
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Reduced(stages), path)
         } else {
             let scheme =
-                |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system.clone(), method.rule, step), dim: Fixed });
+                |step| Ok(LagrangeDirac { ld: DiscreteLagrangian::new(system.clone(), method.rule, step), dim });
             let (stages, path) = Stages::new(method, h, steps, &first, scheme)?;
             (Schemes::Unreduced(stages), path)
         };
         let rank = equipped!(&schemes, st => st.first_step_rank(&first));
-        if rank < N {
-            return Err(Error::Undetermined { rank, coordinates: N });
+        if rank < dim.n() {
+            return Err(Error::Undetermined { rank, coordinates: dim.n() });
         }
         let fresh_kept = match derivative_path {
             DerivativePath::Compiled { residual, jacobian, .. } => {
-                newton::KeptJacobian::with_relative_cost(newton::compiled_relative_cost(N, residual, jacobian))
+                newton::KeptJacobian::with_relative_cost(newton::compiled_relative_cost(dim.n(), residual, jacobian))
             }
-            DerivativePath::Dual { .. } => newton::KeptJacobian::new(Fixed),
+            DerivativePath::Dual { .. } => newton::KeptJacobian::new(dim),
         };
         let progress = equipped!(&schemes, st => Progress::cold(
-            &st.first().scheme, &st.gammas, &fresh_kept, start, setup.dq0, kinds, &setup.split, method, warnings
+            &st.first().scheme, &st.gammas, &fresh_kept, start, &setup.dq0, &kinds, &setup.split, method, warnings
         ));
+        let angles = dim.array(|i| f64::from(u8::from(kinds[i] == CoordinateKind::Angle)));
         Ok(Self {
             context: Context {
                 system,
+                dim,
                 method: method.clone(),
                 h,
                 steps,
                 split: setup.split,
                 kinds,
                 wrap_angles: false,
-                angles: kinds.map(|kind| f64::from(u8::from(kind == CoordinateKind::Angle))),
+                angles,
                 legendre_at_start,
             },
             schemes,
@@ -210,19 +220,12 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
 
     /// The increment q_{k+1} − q_k the predictor expects for the next step (the sum over its
     /// sub-steps).
-    fn predicted_increment(&self) -> [f64; N] {
-        equipped!(&self.schemes, e => {
-            let scheme = &e.first().scheme;
-            self.progress.stages.iter().fold([0.0; N], |mut sum, memory| {
-                let dq = scheme.increment(&memory.predictor.predict());
-                sum.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
-                sum
-            })
-        })
+    fn predicted_increment(&self) -> Dm::Array<f64> {
+        equipped!(&self.schemes, e => self.progress.predicted_increment(&e.first().scheme))
     }
 
     /// The canonical momenta p_k.
-    fn p(&self) -> [f64; N] {
+    fn p(&self) -> Dm::Array<f64> {
         equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&self.progress.momenta))
     }
 
@@ -271,7 +274,7 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
     /// The row of the current step k: q_k, p_k, the Hamiltonian and the momentum map (the discrete
     /// energy of step k is known once it is taken: [`StepReport::discrete_energy`]). The summary's
     /// energy statistics are over the rows taken.
-    pub fn row(&mut self) -> OwnedRow<N> {
+    pub fn row(&mut self) -> OwnedRowIn<Dm> {
         equipped!(&self.schemes, e => self.progress.row(&e.first().scheme, &self.context))
     }
 
@@ -315,13 +318,13 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
 
     /// The state of step k, with all that a stepper of the same system, method and step needs to
     /// continue from it bit for bit.
-    pub fn state(&self) -> State<N> {
+    pub fn state(&self) -> StateIn<Dm> {
         let progress = &self.progress;
         let p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&progress.momenta));
         let (method, h) = (self.context.method.clone(), self.context.h);
         let (chart, near) = (0, progress.config.unwrapped());
         let memory = Memory { method, h, progress: progress.clone(), chart, near };
-        State { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
+        StateIn { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
     }
 
     /// Continues from `state`: from a state taken from a stepper of the same system, method and step
@@ -336,7 +339,7 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
     /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
     /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
     /// are not tested again for a cold state.
-    pub fn restart(&mut self, state: &State<N>) -> Result<(), Error> {
+    pub fn restart(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
         if state.k > self.context.steps {
             let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
             return Err(Error::Invalid { what: Input::State, why });
@@ -351,23 +354,24 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
             equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
             return Ok(());
         }
-        if let Some((i, &value)) = state.q.iter().chain(&state.p).enumerate().find(|(_, x)| !x.is_finite()) {
+        let (q, p) = (state.q.as_ref(), state.p.as_ref());
+        if let Some((i, &value)) = q.iter().chain(p).enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::NonFinite { what: Input::State, entry: Some(i), value });
         }
-        let (system, (q, p)) = (&self.context.system, (&state.q, &state.p));
-        let (v, mismatch) = legendre::velocity(system, q, p);
+        let (system, dim) = (&self.context.system, self.context.dim);
+        let (v, mismatch) = legendre::velocity_in(dim, system, &state.q, &state.p);
         let scale = p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if mismatch > crate::CONSTRAINT_TOLERANCE * (1.0 + scale) {
-            let rank = legendre::rank(system, q, &v);
-            if rank < N {
-                return Err(Error::OffPrimaryConstraint { rank, coordinates: N, mismatch });
+            let rank = legendre::rank_in(dim, system, &state.q, &v);
+            if rank < dim.n() {
+                return Err(Error::OffPrimaryConstraint { rank, coordinates: dim.n(), mismatch });
             }
         }
-        let dq = first_increment(&v, self.context.h);
-        let start = (state.k, state.q, state.p);
+        let dq = first_increment::<Dm>(&v, self.context.h);
+        let start = (state.k, state.q.clone(), state.p.clone());
         let warnings = self.check_warnings.clone();
-        let (kinds, split, method) = (self.context.kinds, &self.context.split, &self.context.method);
-        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, dq, kinds, split, method, warnings));
+        let (kinds, split, method) = (&self.context.kinds, &self.context.split, &self.context.method);
+        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &dq, kinds, split, method, warnings));
         self.progress = progress;
         equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
         Ok(())
@@ -389,16 +393,19 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
             return Ok(false);
         }
         let (system, method) = (&self.context.system, &self.context.method);
-        let setup = Setup::new(&system, problem, method)?;
-        let check_warnings = crate::check::findings(&system, problem, method, &setup).verdict(method)?;
+        let setup = Setup::new(system, problem, method)?;
+        let check_warnings = crate::check::findings(system, problem, method, &setup).verdict(method)?;
         let started = Instant::now();
-        let legendre_at_start = legendre::conditioning(&system, &setup.q0, &setup.dq0.map(|d| d / h)).0;
-        let (kinds, split) = (self.context.kinds, &self.context.split);
-        let (start, warnings) = ((0, setup.q0, setup.p0), check_warnings.clone());
-        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, setup.dq0, kinds, split, method, warnings));
+        let dim = self.context.dim;
+        let v0 = dim.array(|i| setup.dq0[i] / h);
+        let legendre_at_start = legendre::conditioning_in(dim, system, &setup.q0, &v0).0;
+        let (kinds, split) = (&self.context.kinds, &self.context.split);
+        let (start, warnings) = ((0, setup.q0.clone(), setup.p0.clone()), check_warnings.clone());
+        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &setup.dq0, kinds, split, method, warnings));
         let serve = equipped!(&self.schemes, e => e.sequence.iter().zip(&progress.stages).all(|(&d, memory)| {
             let e = &e.distinct[d];
-            let z = memory.predictor.predict().into();
+            let predicted = memory.predictor.predict();
+            let z = dim.array(|i| predicted[i]);
             e.derivatives.serve_first_step(&e.scheme, &e.scheme.base(progress.config.base()), &z)
         }));
         if !serve {
@@ -420,19 +427,17 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
         if let Some(jump) = monitor.finish() {
             jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
         }
-        let final_q = config.output(self.context.wrap_angles).to_vec();
-        let final_p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(momenta)).to_vec();
-        let (k0, q0, p0) = record.start;
+        let final_q = config.output(self.context.wrap_angles).as_ref().to_vec();
+        let final_p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(momenta)).as_ref().to_vec();
+        let (k0, q0, p0) = &record.start;
         let reference_error =
-            self.context.system.exact_solution(&q0, &p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
+            self.context.system.exact_solution(q0, p0, (k - k0) as f64 * self.context.h).and_then(|exact| {
                 let unwrapped = config.unwrapped();
-                let terms: Vec<f64> =
-                    exact.iter().zip(&unwrapped).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
-                (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
+                reference_error(exact.as_ref(), unwrapped.as_ref())
             });
         let j_scale = record.j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         Ok(Summary {
-            coordinates: self.context.system.coordinates().iter().map(|c| c.name.clone()).collect(),
+            coordinates: self.context.system.coordinates().as_ref().iter().map(|c| c.name.clone()).collect(),
             steps: k - k0,
             step: self.context.h,
             final_q,
@@ -441,7 +446,7 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
             discrete_energy: record.discrete_energy.stats(),
             momentum_map: MomentumMapDrift {
                 max_relative_drift: (j_scale > 0.0).then(|| record.max_drift / j_scale),
-                initial: record.j0,
+                initial: record.j0.clone(),
                 max_drift: record.max_drift,
             },
             newton: record.newton,
@@ -455,35 +460,43 @@ impl<S: System<N> + Clone, const N: usize> ChartStepper<S, N> {
 }
 
 /// The first step of a run, at which its derivatives are prepared and checked.
-struct FirstStep<const N: usize> {
-    q: Configuration<N>,
-    p: [f64; N],
+struct FirstStep<Dm: Dim> {
+    q: ConfigurationIn<Dm>,
+    p: Dm::Array<f64>,
     /// The predictor's increment h · v0.
-    dq: [f64; N],
+    dq: Dm::Array<f64>,
 }
 
-impl<Sc: Scheme<Fixed<N>>, const N: usize> Equipped<Sc, N> {
+impl<Sc: Scheme<Dm>, Dm: Dim> Equipped<Sc, Dm> {
     /// The scheme of a sub-step γh with its equations and the derivatives of its generating function,
     /// prepared for `steps` evaluations at the `first` step (with the predictor's increment γ · dq).
     fn new(
         scheme: Sc,
         method: &Method,
         steps: usize,
-        first: &FirstStep<N>,
+        first: &FirstStep<Dm>,
         gamma: f64,
     ) -> Result<(Self, DerivativePath), Error> {
         // γ = 1 gives the increment itself, bit for bit.
-        let dq = first.dq.map(|d| gamma * d);
+        let dim = Dm::of(&first.dq);
+        let dq = dim.array(|i| gamma * first.dq[i]);
         let momenta = scheme.momenta_from_p(&first.p);
         let base = scheme.base(first.q.base());
-        let prepare = |dq: &[f64; N]| {
-            StepDerivatives::new(&scheme, method.differentiation, steps, &base, &scheme.unknowns(dq).into(), &momenta)
+        let prepare = |dq: &Dm::Array<f64>| {
+            let z = scheme.unknowns(dq);
+            StepDerivatives::new(&scheme, method.differentiation, steps, &base, &dim.array(|i| z[i]), &momenta)
         };
         // A long step's predicted point may leave the chart's domain (the disc of a hemisphere's
         // projection) where the step itself, solved by Newton's method or subdivided, does not: the
         // derivatives are then prepared at the step's start (a zero increment), a point of the domain.
         let (derivatives, path) = prepare(&dq)
-            .or_else(|e| if dq.iter().any(|d| *d != 0.0) { prepare(&[0.0; N]).map_err(|_| e) } else { Err(e) })
+            .or_else(|e| {
+                if dq.as_ref().iter().any(|d| *d != 0.0) {
+                    prepare(&dim.array(|_| 0.0)).map_err(|_| e)
+                } else {
+                    Err(e)
+                }
+            })
             .map_err(Error::NotCompiled)?;
         let (equations, prepared) = (scheme.equations(), momenta);
         let renewable = derivatives.independent_of_first_step(method.differentiation, steps);
@@ -492,14 +505,21 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Equipped<Sc, N> {
 
     /// The scheme of another sub-step with `derivatives` shared from the scheme `other` prepared
     /// ([`StepDerivatives::for_step`]: the same programs with the other sub-step's h).
-    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<Fixed<N>>, first: &FirstStep<N>) -> Self {
+    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<Dm>, first: &FirstStep<Dm>) -> Self {
         let (equations, prepared) = (scheme.equations(), scheme.momenta_from_p(&first.p));
         Self { equations, scheme, derivatives, prepared, closed_form: true, renewable: other.renewable }
     }
 
     /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds
     /// as constants, those that do not advance, are the same.
-    fn serves(&self, momenta: &[f64; N]) -> bool {
-        (0..N).all(|i| self.equations.advances[i] || momenta[i].to_bits() == self.prepared[i].to_bits())
+    fn serves(&self, momenta: &Dm::Array<f64>) -> bool {
+        (0..momenta.as_ref().len())
+            .all(|i| self.equations.advances[i] || momenta[i].to_bits() == self.prepared[i].to_bits())
     }
+}
+
+/// The distance √Σ (exact − q)² over the coordinates with an exact value, if any has one.
+fn reference_error(exact: &[Option<f64>], q: &[f64]) -> Option<f64> {
+    let terms: Vec<f64> = exact.iter().zip(q).filter_map(|(e, q)| e.map(|e| (e - q).powi(2))).collect();
+    (!terms.is_empty()).then(|| terms.iter().sum::<f64>().sqrt())
 }

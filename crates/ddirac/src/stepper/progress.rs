@@ -2,34 +2,33 @@
 //! Newton Jacobian, the energy watch and the run's record ([`Progress`]); a step solved in closed form
 //! or by Newton's method ([`solve_step`]).
 
-use nalgebra::SVector;
-
 use super::stages::{Stages, MAX_SUBDIVISION};
-use super::{chart_watch, Context, Equipped, FirstStep, OwnedRow, StepReport};
-use crate::chart::Configuration;
+use super::{chart_watch, Context, Equipped, FirstStep, OwnedRowIn, StepReport};
+use crate::chart::ConfigurationIn;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
-use crate::dim::Fixed;
+use crate::dim::Dim;
 use crate::energy_jump::{Jump, JumpAction, Monitor};
+use crate::mechanics::lagrangian::SystemIn;
 use crate::mechanics::legendre;
 use crate::scheme::Scheme;
-use crate::{newton, CoordinateKind, Error, Method, Split, System};
+use crate::{newton, CoordinateKind, Error, Method, Split};
 
 /// Everything a step changes: the state of step k, the solver's memory and the run's record.
 #[derive(Debug)]
-pub(super) struct Progress<const N: usize> {
+pub(super) struct Progress<Dm: Dim> {
     pub(super) k: usize,
-    pub(super) config: Configuration<N>,
+    pub(super) config: ConfigurationIn<Dm>,
     /// The scheme momenta (see [`Scheme`]).
-    pub(super) momenta: [f64; N],
+    pub(super) momenta: Dm::Array<f64>,
     /// The canonical momenta p_k of the energy watch.
-    pub(super) p_now: [f64; N],
+    pub(super) p_now: Dm::Array<f64>,
     /// The solver's memory of each sub-step of a step ([`Stages`]; one for the basic method).
-    pub(super) stages: Vec<StageMemory<N>>,
+    pub(super) stages: Vec<StageMemory<Dm>>,
     pub(super) monitor: Monitor,
     /// The discrete energy of the last step taken (NaN before the first), for the plausibility
     /// test of the next ([`IMPLAUSIBLE_ENERGY_CHANGE`]).
     pub(super) last_energy: f64,
-    pub(super) record: Record<N>,
+    pub(super) record: Record<Dm>,
 }
 
 /// A solved step whose discrete energy differs from the last step's by more than this fraction of
@@ -40,16 +39,16 @@ pub const IMPLAUSIBLE_ENERGY_CHANGE: f64 = 1e-2;
 
 /// What the solve of one sub-step remembers from step to step: its predictor and kept Jacobian.
 #[derive(Debug, Clone)]
-pub(super) struct StageMemory<const N: usize> {
-    pub(super) predictor: Predictor<N>,
-    pub(super) kept: newton::KeptJacobian<Fixed<N>>,
+pub(super) struct StageMemory<Dm: Dim> {
+    pub(super) predictor: Predictor<Dm>,
+    pub(super) kept: newton::KeptJacobian<Dm>,
 }
 
 /// What the summary reports: statistics since the record started, and the warnings.
 #[derive(Debug)]
-pub(super) struct Record<const N: usize> {
+pub(super) struct Record<Dm: Dim> {
     /// The step k0 and the state (q, p) the record starts from.
-    pub(super) start: (usize, [f64; N], [f64; N]),
+    pub(super) start: (usize, Dm::Array<f64>, Dm::Array<f64>),
     /// The momentum map at the start.
     pub(super) j0: Vec<f64>,
     pub(super) max_drift: f64,
@@ -61,13 +60,13 @@ pub(super) struct Record<const N: usize> {
 
 /// `clone_from` reuses the vectors' memory: the stepper of an atlas saves a step's progress into
 /// the same place at every step, without allocating.
-impl<const N: usize> Clone for Progress<N> {
+impl<Dm: Dim> Clone for Progress<Dm> {
     fn clone(&self) -> Self {
         Self {
             k: self.k,
             config: self.config.clone(),
-            momenta: self.momenta,
-            p_now: self.p_now,
+            momenta: self.momenta.clone(),
+            p_now: self.p_now.clone(),
             stages: self.stages.clone(),
             monitor: self.monitor.clone(),
             last_energy: self.last_energy,
@@ -78,8 +77,8 @@ impl<const N: usize> Clone for Progress<N> {
     fn clone_from(&mut self, source: &Self) {
         self.k = source.k;
         self.config.clone_from(&source.config);
-        self.momenta = source.momenta;
-        self.p_now = source.p_now;
+        self.momenta.clone_from(&source.momenta);
+        self.p_now.clone_from(&source.p_now);
         self.stages.clone_from(&source.stages);
         self.monitor.clone_from(&source.monitor);
         self.last_energy = source.last_energy;
@@ -87,10 +86,10 @@ impl<const N: usize> Clone for Progress<N> {
     }
 }
 
-impl<const N: usize> Clone for Record<N> {
+impl<Dm: Dim> Clone for Record<Dm> {
     fn clone(&self) -> Self {
         Self {
-            start: self.start,
+            start: self.start.clone(),
             j0: self.j0.clone(),
             max_drift: self.max_drift,
             energy: self.energy,
@@ -101,7 +100,7 @@ impl<const N: usize> Clone for Record<N> {
     }
 
     fn clone_from(&mut self, source: &Self) {
-        self.start = source.start;
+        self.start.clone_from(&source.start);
         self.j0.clone_from(&source.j0);
         self.max_drift = source.max_drift;
         self.energy = source.energy;
@@ -111,24 +110,28 @@ impl<const N: usize> Clone for Record<N> {
     }
 }
 
-impl<const N: usize> Record<N> {
+impl<Dm: Dim> Record<Dm> {
     /// Folds the momentum map of the scheme `momenta` into the largest drift.
-    pub(super) fn drift(&mut self, split: &Split, momenta: &[f64; N]) {
-        let j = split.momentum_map(momenta);
+    pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>) {
+        let j = split.momentum_map(momenta.as_ref());
         self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
     }
 }
 
-impl<const N: usize> Progress<N> {
+impl<Dm: Dim> Progress<Dm> {
     /// The row of step k; its energy goes into the record.
     #[inline]
-    pub(super) fn row<S: System<N>>(&mut self, scheme: &impl Scheme<Fixed<N>>, context: &Context<S, N>) -> OwnedRow<N> {
+    pub(super) fn row<S: SystemIn<Dm>>(
+        &mut self,
+        scheme: &impl Scheme<Dm>,
+        context: &Context<S, Dm>,
+    ) -> OwnedRowIn<Dm> {
         let p = scheme.p_from_momenta(&self.momenta);
-        let mut momentum_map = [0.0; N];
-        momentum_map.iter_mut().zip(context.split.momentum_map(&p)).for_each(|(slot, j)| *slot = j);
-        let energy = legendre::hamiltonian(&context.system, self.config.base(), &p);
+        let mut momentum_map = context.dim.array(|_| 0.0);
+        momentum_map.as_mut().iter_mut().zip(context.split.momentum_map(p.as_ref())).for_each(|(slot, j)| *slot = j);
+        let energy = legendre::hamiltonian_in(context.dim, &context.system, self.config.base(), &p);
         self.record.energy.push(energy);
-        OwnedRow {
+        OwnedRowIn {
             k: self.k,
             t: self.k as f64 * context.h,
             q: self.config.output(context.wrap_angles),
@@ -141,25 +144,37 @@ impl<const N: usize> Progress<N> {
         }
     }
 
+    /// The increment q_{k+1} − q_k the predictors expect for the next step (the sum over its
+    /// sub-steps).
+    pub(super) fn predicted_increment(&self, scheme: &impl Scheme<Dm>) -> Dm::Array<f64> {
+        let mut sum = Dm::of(&self.momenta).array(|_| 0.0);
+        for memory in &self.stages {
+            let dq = scheme.increment(&memory.predictor.predict());
+            sum.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(s, d)| *s += d);
+        }
+        sum
+    }
+
     /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq` (γ · dq
     /// for a sub-step γh of a step) and kept Jacobian `kept`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn cold(
-        scheme: &impl Scheme<Fixed<N>>,
+        scheme: &impl Scheme<Dm>,
         gammas: &[f64],
-        kept: &newton::KeptJacobian<Fixed<N>>,
-        start: (usize, [f64; N], [f64; N]),
-        dq: [f64; N],
-        kinds: [CoordinateKind; N],
+        kept: &newton::KeptJacobian<Dm>,
+        start: (usize, Dm::Array<f64>, Dm::Array<f64>),
+        dq: &Dm::Array<f64>,
+        kinds: &Dm::Array<CoordinateKind>,
         split: &Split,
         method: &Method,
         warnings: Vec<Warning>,
     ) -> Self {
-        let (k, q, p) = start;
+        let dim = Dm::of(dq);
+        let (k, q, p) = start.clone();
         let momenta = scheme.momenta_from_p(&p);
         let mut record = Record {
             start,
-            j0: split.momentum_map(&p).collect(),
+            j0: split.momentum_map(p.as_ref()).collect(),
             max_drift: 0.0,
             energy: Accumulator::default(),
             discrete_energy: Accumulator::default(),
@@ -169,14 +184,14 @@ impl<const N: usize> Progress<N> {
         record.drift(split, &momenta);
         Self {
             k,
-            config: Configuration::new(q, kinds),
+            config: ConfigurationIn::new(q, kinds.clone()),
             momenta,
             p_now: p,
             stages: gammas
                 .iter()
                 .map(|&g| {
-                    let dq = dq.map(|d| g * d);
-                    StageMemory { predictor: Predictor::new(scheme.unknowns(&dq)), kept: kept.clone() }
+                    let dq = dim.array(|i| g * dq[i]);
+                    StageMemory { predictor: Predictor::new(dim, scheme.unknowns(&dq)), kept: kept.clone() }
                 })
                 .collect(),
             monitor: Monitor::new(method.energy_jump),
@@ -189,10 +204,10 @@ impl<const N: usize> Progress<N> {
     /// but the kept Jacobians; an energy jump under [`JumpAction::Fail`] is an error after the step is
     /// taken.
     #[inline]
-    pub(super) fn step<S: System<N>, Sc: Scheme<Fixed<N>>>(
+    pub(super) fn step<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
         &mut self,
-        stages: &Stages<Sc, N>,
-        context: &Context<S, N>,
+        stages: &Stages<Sc, Dm>,
+        context: &Context<S, Dm>,
     ) -> Result<StepReport, Error> {
         let taken = if stages.sequence.len() == 1 {
             self.take_basic(stages.first(), context)
@@ -215,8 +230,9 @@ impl<const N: usize> Progress<N> {
     /// Why a solved step cannot be trusted, if it cannot: its discrete energy (when the energy is
     /// watched) moved from the last step's by more than [`IMPLAUSIBLE_ENERGY_CHANGE`] of its scale.
     #[inline]
-    fn implausible<S: System<N>>(&self, taken: &Taken<N>, context: &Context<S, N>) -> Option<Error> {
-        let (pv, _) = taken.pv?;
+    fn implausible<S: SystemIn<Dm>>(&self, taken: &Taken<Dm>, context: &Context<S, Dm>) -> Option<Error> {
+        let (pv, _) = taken.pv.as_ref()?;
+        let pv = *pv;
         let h = context.h;
         let (pv, energy) = (pv / h, pv / h - taken.discrete_energy / h);
         let scale = self.last_energy.abs().max(pv.abs());
@@ -230,32 +246,30 @@ impl<const N: usize> Progress<N> {
     /// increment. When no subdivision converges: the implausible solution if there is one (the energy
     /// watch then judges it), else `failure` with the subdivisions tried.
     #[cold]
-    fn subdivide<S: System<N>, Sc: Scheme<Fixed<N>>>(
+    fn subdivide<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
         &mut self,
-        stages: &Stages<Sc, N>,
-        context: &Context<S, N>,
+        stages: &Stages<Sc, Dm>,
+        context: &Context<S, Dm>,
         failure: Error,
-        solved: Option<Taken<N>>,
-    ) -> Result<Taken<N>, Error> {
+        solved: Option<Taken<Dm>>,
+    ) -> Result<Taken<Dm>, Error> {
+        let dim = context.dim;
         let scheme = &stages.first().scheme;
-        let predicted = self.stages.iter().fold([0.0; N], |mut sum, memory| {
-            let dq = scheme.increment(&memory.predictor.predict());
-            sum.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
-            sum
-        });
-        let first = FirstStep { q: self.config.clone(), p: scheme.p_from_momenta(&self.momenta), dq: predicted };
+        let predicted = self.predicted_increment(scheme);
+        let first =
+            FirstStep { q: self.config.clone(), p: scheme.p_from_momenta(&self.momenta), dq: predicted.clone() };
         let mut m = 2;
         while m <= MAX_SUBDIVISION {
             let sub = stages.subdivided(m, &context.method, &first)?;
-            let mut memory: Vec<StageMemory<N>> = sub
+            let mut memory: Vec<StageMemory<Dm>> = sub
                 .sequence
                 .iter()
                 .zip(&sub.gammas)
                 .map(|(&d, g)| {
-                    let dq = predicted.map(|x| g * x);
+                    let dq = dim.array(|i| g * predicted[i]);
                     StageMemory {
-                        predictor: Predictor::new(sub.distinct[d].scheme.unknowns(&dq)),
-                        kept: newton::KeptJacobian::new(Fixed),
+                        predictor: Predictor::new(dim, sub.distinct[d].scheme.unknowns(&dq)),
+                        kept: newton::KeptJacobian::new(dim),
                     }
                 })
                 .collect();
@@ -264,7 +278,8 @@ impl<const N: usize> Progress<N> {
                 Ok(taken) if !last && self.implausible(&taken, context).is_some() => m *= 2,
                 Ok(mut taken) => {
                     for (memory, g) in self.stages.iter_mut().zip(&stages.gammas) {
-                        memory.predictor = Predictor::new(scheme.unknowns(&taken.dq.map(|x| g * x)));
+                        let dq = dim.array(|i| g * taken.dq[i]);
+                        memory.predictor = Predictor::new(dim, scheme.unknowns(&dq));
                     }
                     if let Some((_, zs)) = &mut taken.composed {
                         zs.clear();
@@ -305,11 +320,11 @@ impl<const N: usize> Progress<N> {
 
     /// Solves step k as one step of the basic method.
     #[inline(always)]
-    fn take_basic<S: System<N>, Sc: Scheme<Fixed<N>>>(
+    fn take_basic<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
         &mut self,
-        e: &Equipped<Sc, N>,
-        context: &Context<S, N>,
-    ) -> Result<Taken<N>, Error> {
+        e: &Equipped<Sc, Dm>,
+        context: &Context<S, Dm>,
+    ) -> Result<Taken<Dm>, Error> {
         let (k, h) = (self.k, context.h);
         let t = k as f64 * h;
         let memory = &mut self.stages[0];
@@ -318,12 +333,12 @@ impl<const N: usize> Progress<N> {
             solve_step(e, &base, &self.momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
                 .map_err(|f| newton_failed(context, k, self.config.base(), &e.scheme, &memory.predictor, f))?;
         let dq = e.scheme.increment(&z);
-        if dq.iter().chain(&momenta_next).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
+        if dq.as_ref().iter().chain(momenta_next.as_ref()).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
             return Err(Error::Diverged { step: k, t, what: "state" });
         }
         let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
             let p_next = e.scheme.p_from_momenta(&momenta_next);
-            let pv = self.p_now.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5;
+            let pv = pv_sum::<Dm>(&self.p_now, &p_next, &dq);
             (pv, p_next)
         });
         Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None })
@@ -331,17 +346,17 @@ impl<const N: usize> Progress<N> {
 
     /// Solves step k as the sub-steps of a composition, each from where the one before ended, with
     /// the solver memory of each sub-step (`memory`, else the progress's own).
-    fn take_composed<S: System<N>, Sc: Scheme<Fixed<N>>>(
+    fn take_composed<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
         &mut self,
-        stages: &Stages<Sc, N>,
-        memory: Option<&mut [StageMemory<N>]>,
-        context: &Context<S, N>,
-    ) -> Result<Taken<N>, Error> {
+        stages: &Stages<Sc, Dm>,
+        memory: Option<&mut [StageMemory<Dm>]>,
+        context: &Context<S, Dm>,
+    ) -> Result<Taken<Dm>, Error> {
         let (k, h) = (self.k, context.h);
         let t = k as f64 * h;
         let watching = context.method.energy_jump.action != JumpAction::Ignore;
-        let (mut config, mut momenta, mut p) = (self.config.clone(), self.momenta, self.p_now);
-        let mut dq_step = [0.0; N];
+        let (mut config, mut momenta, mut p) = (self.config.clone(), self.momenta.clone(), self.p_now.clone());
+        let mut dq_step = context.dim.array(|_| 0.0);
         // Σ L_d of the sub-steps (the composed map's generating function) and Σ ⟨p̄, Δq⟩.
         let (mut discrete_energy, mut pv) = (0.0, 0.0);
         let mut stats = newton::NewtonStats::default();
@@ -357,12 +372,13 @@ impl<const N: usize> Progress<N> {
             let solved = solve_step(e, &base, &momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
                 .map_err(|f| newton_failed(context, k, config.base(), &e.scheme, &memory.predictor, f))?;
             let dq = e.scheme.increment(&solved.z);
-            if dq.iter().chain(&solved.momenta_next).any(|v| !v.is_finite()) || !solved.discrete_energy.is_finite() {
+            let finite = dq.as_ref().iter().chain(solved.momenta_next.as_ref()).all(|v| v.is_finite());
+            if !finite || !solved.discrete_energy.is_finite() {
                 return Err(Error::Diverged { step: k, t, what: "state" });
             }
             if watching {
                 let p_next = e.scheme.p_from_momenta(&solved.momenta_next);
-                pv += p.iter().zip(&p_next).zip(&dq).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5;
+                pv += pv_sum::<Dm>(&p, &p_next, &dq);
                 p = p_next;
             }
             discrete_energy += solved.discrete_energy;
@@ -372,11 +388,11 @@ impl<const N: usize> Progress<N> {
             fell_back |= solved.fell_back;
             momenta = solved.momenta_next;
             config.advance(&dq);
-            dq_step.iter_mut().zip(&dq).for_each(|(s, d)| *s += d);
+            dq_step.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(s, d)| *s += d);
             zs.push(solved.z);
         }
         let pv = watching.then_some((pv, p));
-        let z = zs[0];
+        let z = zs[0].clone();
         Ok(Taken {
             dq: dq_step,
             momenta_next: momenta,
@@ -391,13 +407,13 @@ impl<const N: usize> Progress<N> {
 
     /// Commits a solved step: the chart watch, the record, the energy watch, the new state.
     #[inline(always)]
-    fn commit<S: System<N>>(&mut self, taken: Taken<N>, context: &Context<S, N>) -> Result<StepReport, Error> {
+    fn commit<S: SystemIn<Dm>>(&mut self, taken: Taken<Dm>, context: &Context<S, Dm>) -> Result<StepReport, Error> {
         let (method, h, split) = (&context.method, context.h, &context.split);
         let (k, action) = (self.k, method.energy_jump.action);
         let t = k as f64 * h;
         let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed } = taken;
-        if chart_watch::races(&context.angles, &dq) {
-            let (i, by) = chart_watch::fastest_angle(&context.kinds, &dq);
+        if chart_watch::races(context.angles.as_ref(), dq.as_ref()) {
+            let (i, by) = chart_watch::fastest_angle(context.kinds.as_ref(), dq.as_ref());
             let warning = self.fast_angle(context, &dq, i, by);
             self.record.warnings.push(warning);
         }
@@ -447,8 +463,9 @@ impl<const N: usize> Progress<N> {
 
     /// The warning for angle `i` advancing `by` radians in the step `dq` from q_k.
     #[cold]
-    fn fast_angle<S: System<N>>(&self, context: &Context<S, N>, dq: &[f64; N], i: usize, by: f64) -> Warning {
-        let name = &context.system.coordinates()[i].name;
+    fn fast_angle<S: SystemIn<Dm>>(&self, context: &Context<S, Dm>, dq: &Dm::Array<f64>, i: usize, by: f64) -> Warning {
+        let coordinates = context.system.coordinates();
+        let name = &coordinates[i].name;
         let at = Some((self.k, self.k as f64 * context.h));
         let advanced =
             format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP);
@@ -471,12 +488,12 @@ impl<const N: usize> Progress<N> {
 
 /// The chart watch's diagnosis at `q` for the increment `dq` ([`chart_watch::singular_chart`]).
 #[cold]
-fn singular_chart<S: System<N>, const N: usize>(
-    context: &Context<S, N>,
-    q: &[f64; N],
-    dq: &[f64; N],
+fn singular_chart<S: SystemIn<Dm>, Dm: Dim>(
+    context: &Context<S, Dm>,
+    q: &Dm::Array<f64>,
+    dq: &Dm::Array<f64>,
 ) -> Option<String> {
-    let v = dq.map(|d| d / context.h);
+    let v = context.dim.array(|i| dq[i] / context.h);
     chart_watch::singular_chart(&context.system, context.legendre_at_start, q, &v)
 }
 
@@ -504,15 +521,21 @@ pub(super) fn jumped(
 /// discrete energy (Σ L_d of the sub-steps), Σ⟨p̄, Δq⟩ with the next canonical momenta when the energy
 /// is watched, how the solves went, the unknowns (of the first sub-step) and, for a composition, the
 /// configuration it reached with each sub-step's unknowns.
-struct Taken<const N: usize> {
-    dq: [f64; N],
-    momenta_next: [f64; N],
+struct Taken<Dm: Dim> {
+    dq: Dm::Array<f64>,
+    momenta_next: Dm::Array<f64>,
     discrete_energy: f64,
-    pv: Option<(f64, [f64; N])>,
+    pv: Option<(f64, Dm::Array<f64>)>,
     stats: newton::NewtonStats,
     fell_back: bool,
-    z: SVector<f64, N>,
-    composed: Option<(Configuration<N>, Vec<SVector<f64, N>>)>,
+    z: Dm::Vector,
+    composed: Option<(ConfigurationIn<Dm>, Vec<Dm::Vector>)>,
+}
+
+/// ½ Σ (p0 + p1) · dq: ⟨p̄, Δq⟩ of a step from p0 to p1.
+#[inline(always)]
+fn pv_sum<Dm: Dim>(p0: &Dm::Array<f64>, p1: &Dm::Array<f64>, dq: &Dm::Array<f64>) -> f64 {
+    p0.as_ref().iter().zip(p1.as_ref()).zip(dq.as_ref()).map(|((p0, p1), d)| (p0 + p1) * d).sum::<f64>() * 0.5
 }
 
 /// The failure of a step whose discrete energy moved by `relative` of its scale.
@@ -529,12 +552,12 @@ fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
 /// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the
 /// predicted increment.
 #[cold]
-fn newton_failed<S: System<N>, Sc: Scheme<Fixed<N>>, const N: usize>(
-    context: &Context<S, N>,
+fn newton_failed<S: SystemIn<Dm>, Sc: Scheme<Dm>, Dm: Dim>(
+    context: &Context<S, Dm>,
     k: usize,
-    q: &[f64; N],
+    q: &Dm::Array<f64>,
     scheme: &Sc,
-    predictor: &Predictor<N>,
+    predictor: &Predictor<Dm>,
     f: newton::NewtonFailure,
 ) -> Error {
     let predicted = scheme.increment(&predictor.predict());
@@ -544,9 +567,9 @@ fn newton_failed<S: System<N>, Sc: Scheme<Fixed<N>>, const N: usize>(
 }
 
 /// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
-struct Solved<const N: usize> {
-    z: SVector<f64, N>,
-    momenta_next: [f64; N],
+struct Solved<Dm: Dim> {
+    z: Dm::Vector,
+    momenta_next: Dm::Array<f64>,
     discrete_energy: f64,
     stats: newton::NewtonStats,
     /// Whether the closed-form step failed its test and Newton's method solved the step.
@@ -557,66 +580,74 @@ struct Solved<const N: usize> {
 /// has one and it passes Newton's residual test, otherwise by Newton's method from the closed-form
 /// solution if it failed the test, or from the predictor.
 #[inline]
-fn solve_step<Sc: Scheme<Fixed<N>>, const N: usize>(
-    e: &Equipped<Sc, N>,
-    base: &[f64; N],
-    momenta: &[f64; N],
-    predictor: &Predictor<N>,
-    kept: &mut newton::KeptJacobian<Fixed<N>>,
+fn solve_step<Sc: Scheme<Dm>, Dm: Dim>(
+    e: &Equipped<Sc, Dm>,
+    base: &Dm::Array<f64>,
+    momenta: &Dm::Array<f64>,
+    predictor: &Predictor<Dm>,
+    kept: &mut newton::KeptJacobian<Dm>,
     options: &newton::NewtonOptions,
-) -> Result<Solved<N>, newton::NewtonFailure> {
+) -> Result<Solved<Dm>, newton::NewtonFailure> {
     let Equipped { scheme, equations, derivatives, .. } = e;
-    let scale = momenta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let dim = predictor.dim;
+    let scale = momenta.as_ref().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let closed_form = derivatives.linear_step().filter(|_| e.closed_form).map(|l| l.solve(base, momenta));
-    if let Some(s) = closed_form {
-        if let Some(residual) = s.solves(options.threshold(scale)) {
-            let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
-            let (z, momenta_next, discrete_energy) = (s.z.into(), s.momenta_next, s.value);
-            return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
-        }
-    }
+    let fell_back = closed_form.is_some();
     let mut z = match closed_form {
-        Some(s) if s.z.iter().all(|v| v.is_finite()) => s.z.into(),
-        _ => predictor.predict(),
+        Some(s) => {
+            if let Some(residual) = s.solves(options.threshold(scale)) {
+                let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
+                let (z, momenta_next, discrete_energy) = (dim.vector(|i| s.z[i]), s.momenta_next, s.value);
+                return Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: false });
+            }
+            if s.z.as_ref().iter().all(|v| v.is_finite()) {
+                dim.vector(|i| s.z[i])
+            } else {
+                predictor.predict()
+            }
+        }
+        None => predictor.predict(),
     };
     // Only the by-products are kept from each evaluation: the Jacobian goes straight to the solver
     // (copying an N × N block per evaluation showed as 7 % of a chain of 8's step).
     let mut last = None;
-    let stats = newton::solve_with(&mut z, scale, options, kept, |z, with_jacobian| {
+    let stats = newton::solve_in(dim, &mut z, scale, options, kept, |z, with_jacobian| {
         let (d, mixed) = derivatives.first_or_mixed(scheme, base, z, with_jacobian);
         let e = equations.evaluate(momenta, &d);
         last = Some((e.momenta_next, e.discrete_energy));
         (e.residual, mixed)
     })?;
     let (momenta_next, discrete_energy) = last.expect("Newton evaluates at least once");
-    Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back: closed_form.is_some() })
+    Ok(Solved { z, momenta_next, discrete_energy, stats, fell_back })
 }
 
 /// Where a step's Newton iteration starts: the unknowns of the previous steps extrapolated
 /// quadratically from the last three (linearly after two, the last one after one), and a first guess
 /// before any.
 #[derive(Debug, Clone)]
-pub(super) struct Predictor<const N: usize> {
-    last: [SVector<f64, N>; 3],
+pub(super) struct Predictor<Dm: Dim> {
+    dim: Dm,
+    last: [Dm::Vector; 3],
     count: usize,
 }
 
-impl<const N: usize> Predictor<N> {
-    fn new(first: SVector<f64, N>) -> Self {
-        Self { last: [first; 3], count: 0 }
+impl<Dm: Dim> Predictor<Dm> {
+    fn new(dim: Dm, first: Dm::Vector) -> Self {
+        Self { dim, last: [first.clone(), first.clone(), first], count: 0 }
     }
 
-    fn push(&mut self, z: SVector<f64, N>) {
-        self.last = [z, self.last[0], self.last[1]];
+    fn push(&mut self, z: Dm::Vector) {
+        self.last.rotate_right(1);
+        self.last[0] = z;
         self.count += 1;
     }
 
-    pub(super) fn predict(&self) -> SVector<f64, N> {
-        let [z, z1, z2] = self.last;
+    pub(super) fn predict(&self) -> Dm::Vector {
+        let [z, z1, z2] = &self.last;
         match self.count {
-            0 | 1 => z,
-            2 => 2.0 * z - z1,
-            _ => 3.0 * (z - z1) + z2,
+            0 | 1 => z.clone(),
+            2 => self.dim.vector(|i| 2.0 * z[i] - z1[i]),
+            _ => self.dim.vector(|i| 3.0 * (z[i] - z1[i]) + z2[i]),
         }
     }
 }
@@ -624,6 +655,8 @@ impl<const N: usize> Predictor<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dim::Fixed;
+    use nalgebra::SVector;
 
     /// The predictor reproduces polynomials of the degree it extrapolates with: constant after one
     /// step, linear after two, quadratic from three on.
@@ -631,7 +664,7 @@ mod tests {
     fn predictor_is_exact_for_polynomials_of_its_degree() {
         let polynomial = |degree: i32, k: f64| SVector::<f64, 2>::new(k.powi(degree) - 2.0 * k, 0.5 * k.powi(degree));
         for (count, degree) in [(1, 0), (2, 1), (3, 2), (6, 2)] {
-            let mut predictor = Predictor::new(SVector::zeros());
+            let mut predictor = Predictor::new(Fixed::<2>, SVector::zeros());
             for k in 0..count {
                 let z = if degree == 0 { SVector::repeat(3.0) } else { polynomial(degree, k as f64) };
                 predictor.push(z);

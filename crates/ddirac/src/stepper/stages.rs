@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use super::{Equipped, FirstStep};
 use crate::diagnostics::DerivativePath;
-use crate::dim::Fixed;
+use crate::dim::Dim;
 use crate::scheme::Scheme;
 use crate::{Differentiation, Error, Input, Method, Rule};
 
@@ -18,9 +18,9 @@ const RANK_TOLERANCE: f64 = 1e-13;
 pub const MAX_SUBDIVISION: usize = 64;
 
 /// The schemes of a step's sub-steps.
-pub(super) struct Stages<Sc, const N: usize> {
+pub(super) struct Stages<Sc, Dm: Dim> {
     /// One equipped scheme per distinct sub-step size γh, in the order of their first use.
-    pub(super) distinct: Vec<Equipped<Sc, N>>,
+    pub(super) distinct: Vec<Equipped<Sc, Dm>>,
     /// The sub-steps of a step, in order: the index of each one's scheme in `distinct`.
     pub(super) sequence: Vec<usize>,
     /// The fraction γ of each sub-step.
@@ -28,17 +28,20 @@ pub(super) struct Stages<Sc, const N: usize> {
     /// The step h.
     h: f64,
     /// The stages of a step taken as m equal steps of these stages, prepared when first needed.
-    subdivided: Mutex<Vec<(usize, Arc<Stages<Sc, N>>)>>,
+    subdivided: Mutex<Vec<Subdivided<Sc, Dm>>>,
 }
 
-impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
+/// The stages of a step taken as m equal steps, with m.
+type Subdivided<Sc, Dm> = (usize, Arc<Stages<Sc, Dm>>);
+
+impl<Sc: Scheme<Dm>, Dm: Dim> Stages<Sc, Dm> {
     /// The stages of `method`'s composition for step `h` in a run of `steps` steps from `first`, and
     /// the derivative path of the first: `scheme(γh)` builds the scheme of a sub-step γh.
     pub(super) fn new(
         method: &Method,
         h: f64,
         steps: usize,
-        first: &FirstStep<N>,
+        first: &FirstStep<Dm>,
         scheme: impl FnMut(f64) -> Result<Sc, Error>,
     ) -> Result<(Self, DerivativePath), Error> {
         Self::with_fractions(method, h, method.composition.coefficients(), steps, first, scheme)
@@ -50,7 +53,7 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
         h: f64,
         gammas: Vec<f64>,
         steps: usize,
-        first: &FirstStep<N>,
+        first: &FirstStep<Dm>,
         mut scheme: impl FnMut(f64) -> Result<Sc, Error>,
     ) -> Result<(Self, DerivativePath), Error> {
         let mut values: Vec<f64> = Vec::new();
@@ -65,7 +68,7 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
             })
             .collect();
         let count = |i: usize| sequence.iter().filter(|&&j| j == i).count();
-        let mut distinct: Vec<Equipped<Sc, N>> = Vec::with_capacity(values.len());
+        let mut distinct: Vec<Equipped<Sc, Dm>> = Vec::with_capacity(values.len());
         let mut path = None;
         for (i, &g) in values.iter().enumerate() {
             // γ = 1 gives h itself, bit for bit.
@@ -92,7 +95,7 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
     /// The stages of a step taken as `m` equal steps of these stages (sub-steps γᵢh/m), prepared at
     /// `first` the first time they are asked for (by dual numbers unless the method requires compiled
     /// derivatives: they serve the rare steps that need them).
-    pub(super) fn subdivided(&self, m: usize, method: &Method, first: &FirstStep<N>) -> Result<Arc<Self>, Error> {
+    pub(super) fn subdivided(&self, m: usize, method: &Method, first: &FirstStep<Dm>) -> Result<Arc<Self>, Error> {
         let mut prepared = self.subdivided.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some((_, stages)) = prepared.iter().find(|(count, _)| *count == m) {
             return Ok(stages.clone());
@@ -108,22 +111,23 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
     /// The scheme of the first sub-step (what does not depend on the sub-step size — bases, momenta,
     /// increments — is read from it).
     #[inline]
-    pub(super) fn first(&self) -> &Equipped<Sc, N> {
+    pub(super) fn first(&self) -> &Equipped<Sc, Dm> {
         &self.distinct[0]
     }
 
     /// The rank of the first sub-step's Jacobian at the `first` step (N where it is not finite: Newton's
     /// method reports that case).
-    pub(super) fn first_step_rank(&self, first: &FirstStep<N>) -> usize {
+    pub(super) fn first_step_rank(&self, first: &FirstStep<Dm>) -> usize {
         let e = self.first();
-        let dq = first.dq.map(|d| self.gammas[0] * d);
+        let dim = Dm::of(&first.dq);
+        let dq = dim.array(|i| self.gammas[0] * first.dq[i]);
         let base = e.scheme.base(first.q.base());
         let z = e.scheme.unknowns(&dq);
         match e.derivatives.first_or_mixed(&e.scheme, &base, &z, true) {
-            (_, Some(jacobian)) if jacobian.iter().all(|x| x.is_finite()) => {
-                crate::linalg::Factorization::new(Fixed::<N>, &jacobian, RANK_TOLERANCE).map_or(0, |lu| lu.rank)
+            (_, Some(jacobian)) if Dm::matrix_entries(&jacobian).iter().all(|x| x.is_finite()) => {
+                crate::linalg::Factorization::new(dim, &jacobian, RANK_TOLERANCE).map_or(0, |lu| lu.rank)
             }
-            _ => N,
+            _ => dim.n(),
         }
     }
 
@@ -133,7 +137,7 @@ impl<Sc: Scheme<Fixed<N>>, const N: usize> Stages<Sc, N> {
     }
 
     /// Marks which closed-form steps serve a state with scheme momenta `momenta`.
-    pub(super) fn set_closed_form(&mut self, momenta: &[f64; N]) {
+    pub(super) fn set_closed_form(&mut self, momenta: &Dm::Array<f64>) {
         for e in &mut self.distinct {
             e.closed_form = e.serves(momenta);
         }

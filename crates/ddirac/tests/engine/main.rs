@@ -33,6 +33,7 @@ mod issue_11_long_flat_sum;
 mod issue_12_large_systems_on_small_stacks;
 mod issue_12_min_max_compiled;
 mod issue_12_min_max_untaken_branch;
+mod issue_12_systems_in_a_dynamic_dimension;
 mod issue_12_text_systems_of_24_and_50_coordinates;
 mod issue_12_text_systems_of_any_size_up_to_100;
 mod issue_13_pole_passage_is_named;
