@@ -636,9 +636,13 @@ impl<Dm: Dim> Predictor<Dm> {
         Self { dim, last: [first.clone(), first.clone(), first], count: 0 }
     }
 
+    #[inline]
     fn push(&mut self, z: Dm::Vector) {
-        self.last.rotate_right(1);
-        self.last[0] = z;
+        // [z, z₀, z₁] from [z₀, z₁, z₂], by swaps that inline (a rotation of the slice calls memmove).
+        let [a, b, c] = &mut self.last;
+        std::mem::swap(b, c);
+        std::mem::swap(a, b);
+        *a = z;
         self.count += 1;
     }
 
