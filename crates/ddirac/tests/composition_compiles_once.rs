@@ -3,14 +3,21 @@
 //! the two programs of the double spherical pendulum once, and another composition of the same run
 //! compiles nothing. (A compiled closed-form step folds h into its constants, so each distinct size
 //! has its own; the pendulum's steps are not linear and have none.) The counts are of this test
-//! process only, which runs this one test.
+//! process, whose tests run one at a time (`ONE_AT_A_TIME`): the compiled programs are cached in the
+//! process, so a test that compiles the same programs on another thread changes the count.
+
+use std::sync::Mutex;
 
 use ddirac::compiled::native_compilations;
 use ddirac::systems::DoubleSphericalPendulum;
 use ddirac::{solve, Composition, DerivativePath, Differentiation, Method, OutputOptions, Problem};
 
+/// Held by each test of this process for its whole run.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
 #[test]
 fn the_sub_steps_of_a_composition_share_one_compile() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let system = DoubleSphericalPendulum::default();
     let problem = Problem { steps: 100, ..DoubleSphericalPendulum::paper_problem(10_000) };
     for reduced in [false, true] {
@@ -38,6 +45,7 @@ fn the_sub_steps_of_a_composition_share_one_compile() {
 /// ends, to round-off.
 #[test]
 fn the_sub_steps_sharing_one_trace_step_as_dual_numbers_do() {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let system = DoubleSphericalPendulum::default();
     let problem = Problem { steps: 200, ..DoubleSphericalPendulum::paper_problem(10_000) };
     for composition in [Composition::KahanLi17, Composition::Suzuki5] {
