@@ -14,7 +14,7 @@ pub use charged_particle::{ChargedParticle, TABLE_1};
 pub use double_spherical_pendulum::DoubleSphericalPendulum;
 pub use heavy_top::HeavyTop;
 pub use kepler::Kepler;
-pub use pendulum_chain::{PendulumChain, CHAIN_LINKS};
+pub use pendulum_chain::{DynamicPendulumChain, PendulumChain, CHAIN_LINKS};
 pub use spherical_pendulum::SphericalPendulum;
 pub use two_body::TwoBody;
 

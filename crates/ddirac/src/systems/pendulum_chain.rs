@@ -25,12 +25,15 @@
 //! No rotation or translation leaves L invariant (gravity fixes the vertical, the pivot fixes the
 //! origin), so every θ_i is a shape coordinate and a reduced run is refused with
 //! [`Error::NoSymmetry`]. The built-in `pendulum_chain` takes the number of links as the parameter
-//! `links`, one of [`CHAIN_LINKS`].
+//! `links`, any positive integer: [`PendulumChain<N>`] for the counts of [`CHAIN_LINKS`] (arrays on the
+//! stack), [`DynamicPendulumChain`] for the others (a dimension chosen at run time, [`Dynamic`]).
 
 use num_dual::DualNum;
 
+use crate::dim::Dynamic;
+use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
 use crate::sizes::RuntimeSized;
-use crate::{Coordinate, DynSystem, Erased, Error, InitialMomentum, Input, Problem, System};
+use crate::{Coordinate, DynSystem, Erased, ErasedDynamic, Error, InitialMomentum, Input, Problem, Scalar, System};
 
 /// A planar chain of `N` identical pendula (uniform mass and length) hanging from a fixed pivot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,39 +117,124 @@ impl<const N: usize> System<N> for PendulumChain<N> {
     }
 
     fn lagrangian<D: DualNum<Primitive = f64> + Copy>(&self, q: &[D; N], v: &[D; N]) -> D {
-        let zero = D::from(0.0);
-        // Running sums over j ≤ i: (ẋ_i, ẏ_i)/l and −y_i/l.
-        let (mut vx, mut vy, mut depth) = (zero, zero, zero);
-        let (mut speeds, mut depths) = (zero, zero);
-        for (&theta, &omega) in q.iter().zip(v) {
-            let (s, c) = theta.sin_cos();
-            vx += omega * c;
-            vy += omega * s;
-            depth += c;
-            speeds += vx * vx + vy * vy;
-            depths += depth;
-        }
         let Self { m, l, g } = *self;
-        speeds * (0.5 * m * l * l) + depths * (g * m * l)
+        chain_lagrangian((m, l, g), q, v)
     }
 }
+
+/// L of the chain of `q.len()` links with mass, length and gravity `(m, l, g)`, accumulating the
+/// running sums over j ≤ i link by link.
+#[inline(always)]
+fn chain_lagrangian<D: DualNum<Primitive = f64> + Copy>((m, l, g): (f64, f64, f64), q: &[D], v: &[D]) -> D {
+    let zero = D::from(0.0);
+    // Running sums over j ≤ i: (ẋ_i, ẏ_i)/l and −y_i/l.
+    let (mut vx, mut vy, mut depth) = (zero, zero, zero);
+    let (mut speeds, mut depths) = (zero, zero);
+    for (&theta, &omega) in q.iter().zip(v) {
+        let (s, c) = theta.sin_cos();
+        vx += omega * c;
+        vy += omega * s;
+        depth += c;
+        speeds += vx * vx + vy * vy;
+        depths += depth;
+    }
+    speeds * (0.5 * m * l * l) + depths * (g * m * l)
+}
+
+/// The chain of pendula with its number of links chosen at run time: [`PendulumChain`]'s Lagrangian
+/// (the same operations, so the same numbers) in a dynamic dimension ([`Dynamic`]), one engine for
+/// every number of links.
+///
+/// ```
+/// use ddirac::systems::{DynamicPendulumChain, PendulumChain};
+/// use ddirac::{solve, Method, OutputOptions};
+/// let problem = PendulumChain::<3>::problem(50, 0.01);
+/// let fixed = solve(&PendulumChain::<3>::default(), &problem, &Method::default(), &OutputOptions::default());
+/// let dynamic = solve(&DynamicPendulumChain::new(3), &problem, &Method::default(), &OutputOptions::default());
+/// assert_eq!(fixed.unwrap().q, dynamic.unwrap().q);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicPendulumChain {
+    /// The number of links.
+    pub links: usize,
+    /// Mass of each bob.
+    pub m: f64,
+    /// Length of each link.
+    pub l: f64,
+    /// Gravitational acceleration.
+    pub g: f64,
+}
+
+impl DynamicPendulumChain {
+    /// `links` links with m = 1, l = 1, g = 9.8.
+    pub fn new(links: usize) -> Self {
+        let PendulumChain::<0> { m, l, g } = PendulumChain::default_parameters();
+        Self { links, m, l, g }
+    }
+}
+
+impl super::Parameters for DynamicPendulumChain {
+    fn parameters(&self) -> Vec<(&'static str, f64)> {
+        vec![("links", self.links as f64), ("m", self.m), ("l", self.l), ("g", self.g)]
+    }
+
+    fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), Error> {
+        match name {
+            "links" if value == self.links as f64 => {}
+            "links" => {
+                return Err(Error::Invalid {
+                    what: Input::Parameter(name.into()),
+                    why: format!("this chain has {} links, got {value}", self.links),
+                })
+            }
+            "m" => self.m = super::positive(name, value)?,
+            "l" => self.l = super::positive(name, value)?,
+            "g" => self.g = super::finite(name, value)?,
+            _ => return Err(super::unknown_parameter(name, self)),
+        }
+        Ok(())
+    }
+}
+
+impl Lagrangian<Dynamic> for DynamicPendulumChain {
+    #[inline(always)]
+    fn lagrangian<D: Scalar>(&self, q: &Vec<D>, v: &Vec<D>) -> D {
+        chain_lagrangian((self.m, self.l, self.g), q, v)
+    }
+}
+
+impl SystemIn<Dynamic> for DynamicPendulumChain {
+    fn dim(&self) -> Dynamic {
+        Dynamic(self.links)
+    }
+
+    fn coordinates(&self) -> Vec<Coordinate> {
+        (0..self.links).map(|i| Coordinate::shape(&format!("theta{}", i + 1)).angle()).collect()
+    }
+}
+
+/// The most links the built-in `pendulum_chain` takes.
+pub const MAX_LINKS: usize = 4096;
 
 /// Links of the default built-in `pendulum_chain`.
 const DEFAULT_LINKS: usize = 4;
 
-/// Instantiates the chain for each supported number of links, the sizes of [`crate::SIZES`]:
-/// [`CHAIN_LINKS`] and the dispatch on it.
-macro_rules! supported_links {
+/// Instantiates the chain for each number of links of [`crate::SIZES`]: [`CHAIN_LINKS`] and the
+/// dispatch on it.
+macro_rules! fixed_links {
     ($($n:literal)*) => {
-        /// The numbers of links the built-in `pendulum_chain` can be built with (each is a separate
-        /// instance of the engine, [`PendulumChain<N>`] for that N).
+        /// The numbers of links the built-in `pendulum_chain` runs with arrays on the stack (each is a
+        /// separate instance of the engine, [`PendulumChain<N>`] for that N); any other positive number
+        /// of links runs as a [`DynamicPendulumChain`].
         ///
         /// ```
         /// let chain = ddirac::systems::find("pendulum_chain").unwrap();
         /// let system = (chain.build)(&[("links".to_string(), 12.0)]).unwrap();
         /// assert_eq!(system.coordinates()[11].name, "theta12");
-        /// let error = (chain.build)(&[("links".to_string(), 17.0)]).err().unwrap();
-        /// assert!(error.to_string().contains("supported: 1, 2, 3"), "{error}");
+        /// let system = (chain.build)(&[("links".to_string(), 57.0)]).unwrap();
+        /// assert_eq!(system.coordinates()[56].name, "theta57");
+        /// let error = (chain.build)(&[("links".to_string(), 2.5)]).err().unwrap();
+        /// assert!(error.to_string().contains("a positive whole number"), "{error}");
         /// ```
         pub const CHAIN_LINKS: &[usize] = &[$($n),*];
 
@@ -156,19 +244,21 @@ macro_rules! supported_links {
                     let chain = super::with_overrides(PendulumChain::<$n>::default(), overrides)?;
                     Ok(Box::new(Erased(RuntimeSized::Chain(chain))))
                 })*
-                _ => Err(unsupported_links(links as f64)),
+                _ => {
+                    let chain = super::with_overrides(DynamicPendulumChain::new(links), overrides)?;
+                    Ok(Box::new(ErasedDynamic(chain)))
+                }
             }
         }
     };
 }
 
-crate::sizes::with_sizes!(supported_links);
+crate::sizes::with_sizes!(fixed_links);
 
 fn unsupported_links(value: f64) -> Error {
-    let supported: Vec<String> = CHAIN_LINKS.iter().map(|n| n.to_string()).collect();
     Error::Invalid {
         what: Input::Parameter("links".into()),
-        why: format!("{value} is not a supported number of links; supported: {}", supported.join(", ")),
+        why: format!("{value} is not a number of links: a positive whole number"),
     }
 }
 
@@ -183,8 +273,17 @@ pub(super) fn build(overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, E
         Some((name, value)) => super::finite(name, *value)?,
         None => DEFAULT_LINKS as f64,
     };
-    if links.fract() != 0.0 || !CHAIN_LINKS.contains(&(links as usize)) {
+    if links.fract() != 0.0 || links < 1.0 {
         return Err(unsupported_links(links));
+    }
+    if links > MAX_LINKS as f64 {
+        return Err(Error::Invalid {
+            what: Input::Parameter("links".into()),
+            why: format!(
+                "{links} links are more than {MAX_LINKS}: a step's Newton Jacobian is dense, n² numbers ({} GB here)",
+                8.0 * links * links / 1e9
+            ),
+        });
     }
     build_links(links as usize, overrides)
 }

@@ -342,18 +342,22 @@ fn the_built_in_takes_the_number_of_links_as_a_parameter() {
     for links in 1..=16 {
         assert!(CHAIN_LINKS.contains(&links));
     }
-    assert!(CHAIN_LINKS.contains(&50));
-    for &links in CHAIN_LINKS {
+    assert!(CHAIN_LINKS.contains(&32) && !CHAIN_LINKS.contains(&17));
+    // The counts of CHAIN_LINKS run with arrays on the stack, the others in a dynamic dimension.
+    for links in CHAIN_LINKS.iter().copied().chain([17, 33, 51, 101]) {
         let system = (built_in.build)(&set(&[("links", links as f64)])).unwrap();
         let names: Vec<String> = system.coordinates().into_iter().map(|c| c.name).collect();
         assert_eq!(names.len(), links);
         assert_eq!(names[links - 1], format!("theta{links}"));
     }
-    for bad in [17.0, 0.0, -4.0, 2.5, 1e30, 51.0, 101.0] {
+    for bad in [0.0, -4.0, 2.5, 17.5] {
         let error = (built_in.build)(&set(&[("links", bad)])).err().expect("rejected").to_string();
         assert!(error.contains("parameter `links`") && error.contains(&format!("{bad}")), "{error}");
-        assert!(error.contains("supported: 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 20,"), "{error}");
-        assert!(error.ends_with(", 50, 64, 80, 100"), "{error}");
+        assert!(error.contains("a positive whole number"), "{error}");
+    }
+    for huge in [5000.0, 1e30] {
+        let error = (built_in.build)(&set(&[("links", huge)])).err().expect("rejected").to_string();
+        assert!(error.contains("more than 4096") && error.contains("dense"), "{error}");
     }
     let error = (built_in.build)(&set(&[("links", f64::NAN)])).err().unwrap().to_string();
     assert!(error.contains("not finite"), "{error}");
@@ -399,7 +403,9 @@ fn fifty_links_take_a_few_steps_like_rk4() {
             .unwrap();
         (solution.summary.final_q, last, h, steps)
     });
-    assert_eq!(q_end, registry_q_end);
+    // The registry's chain of 50 runs in a dynamic dimension, whose Jacobians sum the same terms in
+    // another order (blocks of 8): the same motion to round-off.
+    assert!(max_abs_diff(&q_end, &registry_q_end) < 1e-13, "{q_end:?} against {registry_q_end:?}");
     let problem = PendulumChain::<50>::problem(steps, h);
     let reference = Reference::uniform(50, 1.0, 1.0, 9.8);
     let duration = h * steps as f64;
