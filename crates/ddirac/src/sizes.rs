@@ -1,29 +1,25 @@
-//! The numbers of coordinates the type-erased layer is built for with a fixed dimension.
+//! The numbers of coordinates the type-erased layer is built for.
 //!
-//! In a fixed dimension ([`crate::dim::Fixed`]) every dual number and matrix of a step lives on the
-//! stack, so each number of coordinates a spec can choose at run time is a separate copy of the
+//! The engine's dimensions are const generics (every dual number and matrix of a step lives on the
+//! stack), so each number of coordinates a spec can choose at run time is a separate copy of the
 //! engine behind [`crate::Erased`]. Text systems ([`crate::expression::ExpressionSpec::into_dyn`]) and
 //! the built-in chain of pendula take their sizes from this one list, [`SIZES`]: every count up to 16,
-//! then 20, 24 and 32; and both are erased as one system type, [`RuntimeSized`], so that each size is
-//! one copy of the engine, not one per system type.
+//! then 20, 24, 32, 40, 50, 64, 80 and 100; and both are erased as one system type, [`RuntimeSized`],
+//! so that each size is one copy of the engine, not one per system type.
 //!
 //! A text system whose count lies between two sizes runs in the next one up, with padding
-//! coordinates that it hides ([`crate::padding`]). Above 32 both run in a dimension chosen at run time
-//! ([`crate::dim::Dynamic`]), one copy of the engine for every count: there it costs fewer instructions
-//! per step than the fixed dimension (the chain of pendula under callgrind, compiled derivatives:
-//! 0.68× at 40 links, 0.46× at 50; dual numbers 0.89× and 0.73×; at 32 the fixed dimension is still
-//! cheaper, 1.54× and 0.81×; BENCHMARKS.md, "Fixed and dynamic dimensions").
+//! coordinates that it hides ([`crate::padding`]).
 
 use crate::expression::ExpressionSystem;
 use crate::systems::PendulumChain;
 use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
 
-/// Calls `$callback!(1 2 … 16 20 24 32)`: the sizes of [`SIZES`] as literals, for the
+/// Calls `$callback!(1 2 … 16 20 24 32 40 50 64 80 100)`: the sizes of [`SIZES`] as literals, for the
 /// dispatches that instantiate the engine for each.
 #[cfg(not(test))]
 macro_rules! with_sizes {
     ($callback:ident) => {
-        $callback! { 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 24 32 }
+        $callback! { 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 24 32 40 50 64 80 100 }
     };
 }
 
@@ -48,8 +44,8 @@ macro_rules! list {
 /// The numbers of coordinates a type-erased system can have, ascending.
 ///
 /// ```
-/// assert_eq!(ddirac::SIZES.len(), 19);
-/// assert!(ddirac::SIZES.contains(&16) && ddirac::SIZES.contains(&32));
+/// assert_eq!(ddirac::SIZES.len(), 24);
+/// assert!(ddirac::SIZES.contains(&16) && ddirac::SIZES.contains(&100));
 /// assert!(!ddirac::SIZES.contains(&17));
 /// ```
 pub const SIZES: &[usize] = with_sizes!(list);
@@ -59,10 +55,10 @@ pub(crate) fn engine_size(n: usize) -> Option<usize> {
     SIZES.iter().copied().find(|&m| m >= n.max(1))
 }
 
-/// The sizes as a reader would write them: `1–16, 20, 24, 32`.
+/// The sizes as a reader would write them: `1–16, 20, 24, 32, 40, 50, 64, 80, 100`.
 ///
 /// ```
-/// assert_eq!(ddirac::sizes_text(), "1–16, 20, 24, 32");
+/// assert_eq!(ddirac::sizes_text(), "1–16, 20, 24, 32, 40, 50, 64, 80, 100");
 /// ```
 pub fn sizes_text() -> String {
     let mut parts: Vec<String> = Vec::new();

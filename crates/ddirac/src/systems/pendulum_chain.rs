@@ -220,7 +220,7 @@ pub const MAX_LINKS: usize = 4096;
 const DEFAULT_LINKS: usize = 4;
 
 /// Instantiates the chain for each number of links of [`crate::SIZES`]: [`CHAIN_LINKS`] and the
-/// dispatch on it.
+/// dispatch on it (other counts run as a [`DynamicPendulumChain`]).
 macro_rules! fixed_links {
     ($($n:literal)*) => {
         /// The numbers of links the built-in `pendulum_chain` runs with arrays on the stack (each is a
