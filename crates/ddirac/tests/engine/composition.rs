@@ -8,7 +8,8 @@ use crate::common;
 use common::{log_log_slope, max_scaled_row_diff, relative_diff, run};
 use ddirac::systems::{ChargedParticle, DoubleSphericalPendulum, Kepler, TwoBody};
 use ddirac::{
-    Composition, Error, InitialMomentum, Input, Method, NewtonOptions, Problem, Rule, State, Stepper, System, Variant,
+    solve, Composition, Differentiation, Error, InitialMomentum, Input, Method, NewtonOptions, OutputOptions, Problem,
+    Rule, State, Stepper, System, Variant,
 };
 
 /// Every set with the step counts over which its error is in its asymptotic regime and above
@@ -246,5 +247,24 @@ fn a_composition_of_a_rule_that_is_not_symmetric_is_refused() {
             other => panic!("expected a refused composition, got {other}"),
         }
         assert!(ddirac::check(&ChargedParticle::default(), &problem, &method).is_err());
+    }
+}
+
+/// The sub-steps that share the first one's trace (its programs with their own h as input) step as
+/// dual numbers do at each sub-step size: a run of order 8 ends where the same run on dual numbers
+/// ends, to round-off.
+#[test]
+fn the_sub_steps_sharing_one_trace_step_as_dual_numbers_do() {
+    let system = DoubleSphericalPendulum::default();
+    let problem = Problem { steps: 200, ..DoubleSphericalPendulum::paper_problem(10_000) };
+    for composition in [Composition::KahanLi17, Composition::Suzuki5] {
+        let end = |differentiation| {
+            let method = Method { composition, differentiation, atlas: false, ..Method::default() };
+            solve(&system, &problem, &method, &OutputOptions::default()).unwrap().summary.final_q
+        };
+        let (compiled, dual) = (end(Differentiation::Compiled), end(Differentiation::Dual));
+        let apart = compiled.iter().zip(&dual).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("{composition:?}: compiled against dual numbers {apart:.1e}");
+        assert!(apart < 1e-11, "{composition:?}: {apart:e}");
     }
 }
