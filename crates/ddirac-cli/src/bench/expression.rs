@@ -7,15 +7,15 @@
 //! costs: the text chain of 17, run in the engine of 20 with padding coordinates
 //! (`ddirac::padding`), against the text chains of 16 and 20, per step.
 
-use std::hint::black_box;
-
 use ddirac::systems::{DoubleSphericalPendulum, PendulumChain};
-use ddirac::{Differentiation, DynSystem, Method, Problem, Rule, Variant};
+use ddirac::{Differentiation, Method, Problem, Rule, Variant};
 use serde::Serialize;
 use serde_json::Value;
 
-use super::harness::{compare, Comparison, Contender, Pair, Target};
-use super::{built_in, built_in_with, engine, integrate_once, max_difference, method, print, to_json, Settings};
+use super::harness::{compare, Comparison, Pair, Target};
+use super::{
+    built_in, built_in_with, engine, integrate_once, max_difference, method, print, stepping, to_json, Settings,
+};
 
 #[path = "../../../ddirac/tests/common/chain_text.rs"]
 mod chain_text;
@@ -75,33 +75,6 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     let chain = chain(settings)?;
     let padding = padding(settings)?;
     to_json(&Report { comparison, final_q_difference: difference, chain, padding })
-}
-
-/// A contender taking `steps` steps of a prepared stepper from its first state, and the q it ends at.
-fn stepping<'a>(
-    name: &str,
-    system: &'a dyn DynSystem,
-    problem: &Problem,
-    method: &Method,
-) -> Result<(Contender<'a>, Vec<f64>), miette::Report> {
-    let failed = |e: ddirac::Error| miette::miette!("the chain ({name}) failed: {e}");
-    let mut stepper = system.stepper(problem, method).map_err(failed)?;
-    let first = stepper.state();
-    let steps = problem.steps;
-    let mut batch = move || -> Result<Vec<f64>, ddirac::Error> {
-        stepper.restart(&first)?;
-        for _ in 0..steps {
-            black_box(stepper.step()?);
-        }
-        Ok(stepper.state().q().to_vec())
-    };
-    let end = batch().map_err(failed)?;
-    let name_owned = name.to_owned();
-    let run = move || {
-        batch().map_err(|e| miette::miette!("the chain ({name_owned}) failed: {e}"))?;
-        Ok(())
-    };
-    Ok((Contender::new(name, steps, run), end))
 }
 
 /// The chain of 50 pendula as text against the built-in one, per step.

@@ -19,6 +19,8 @@
 //!   ([`expression`]);
 //! - `linearity`: time per step for 10³, 10⁴ and 10⁵ steps ([`linearity`]);
 //! - `scaling`: time per step of a chain of N pendula for N = 2 … 50 ([`scaling`]);
+//! - `dimension`: the chain of N pendula in a fixed dimension against the same chain in a dynamic
+//!   one, per step, with dual numbers and compiled derivatives ([`dimension`]);
 //! - `ensemble`: members on 2 threads against 1, 10³ short members against the sum of their steps,
 //!   and the peak memory of `ddirac ensemble` against its output ([`ensemble`]).
 //!
@@ -26,6 +28,7 @@
 //! place when complete.
 
 mod charged_particle;
+mod dimension;
 #[cfg(feature = "dop853")]
 mod dop853;
 /// Without the `dop853` feature the race has no peer.
@@ -107,19 +110,22 @@ pub enum Group {
     Linearity,
     /// Time per step against the number of coordinates.
     Scaling,
+    /// A fixed dimension against a dynamic one.
+    Dimension,
     /// Members on threads, set-up amortised, memory of ensembles.
     Ensemble,
 }
 
 impl Group {
     /// Every group, in the order they run.
-    const ALL: [Group; 7] = [
+    const ALL: [Group; 8] = [
         Group::Reduction,
         Group::ChargedParticle,
         Group::WorkPrecision,
         Group::Expression,
         Group::Linearity,
         Group::Scaling,
+        Group::Dimension,
         Group::Ensemble,
     ];
 
@@ -132,6 +138,7 @@ impl Group {
             Group::Expression => "expression",
             Group::Linearity => "linearity",
             Group::Scaling => "scaling",
+            Group::Dimension => "dimension",
             Group::Ensemble => "ensemble",
         }
     }
@@ -144,6 +151,7 @@ impl Group {
             Group::Expression => expression::run(settings),
             Group::Linearity => linearity::run(settings),
             Group::Scaling => scaling::run(settings),
+            Group::Dimension => dimension::run(settings),
             Group::Ensemble => ensemble::run(settings),
         }
     }
@@ -316,4 +324,31 @@ pub fn max_difference<R: AsRef<[f64]>>(a: &[R], b: &[R]) -> f64 {
         .zip(b)
         .flat_map(|(x, y)| x.as_ref().iter().zip(y.as_ref()).map(|(u, v)| (u - v).abs()))
         .fold(0.0, |largest: f64, d| if d > largest || d.is_nan() { d } else { largest })
+}
+
+/// A contender taking `steps` steps of a prepared stepper from its first state, and the q it ends at.
+pub(crate) fn stepping<'a>(
+    name: &str,
+    system: &'a dyn DynSystem,
+    problem: &Problem,
+    method: &Method,
+) -> Result<(Contender<'a>, Vec<f64>), miette::Report> {
+    let failed = |e: ddirac::Error| miette::miette!("the chain ({name}) failed: {e}");
+    let mut stepper = system.stepper(problem, method).map_err(failed)?;
+    let first = stepper.state();
+    let steps = problem.steps;
+    let mut batch = move || -> Result<Vec<f64>, ddirac::Error> {
+        stepper.restart(&first)?;
+        for _ in 0..steps {
+            black_box(stepper.step()?);
+        }
+        Ok(stepper.state().q().to_vec())
+    };
+    let end = batch().map_err(failed)?;
+    let name_owned = name.to_owned();
+    let run = move || {
+        batch().map_err(|e| miette::miette!("the chain ({name_owned}) failed: {e}"))?;
+        Ok(())
+    };
+    Ok((Contender::new(name, steps, run), end))
 }

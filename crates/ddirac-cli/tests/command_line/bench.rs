@@ -12,7 +12,8 @@ use serde_json::Value;
 
 use common::{ddirac, numbers, TempDir};
 
-const GROUPS: [&str; 6] = ["reduction", "charged-particle", "work-precision", "expression", "linearity", "scaling"];
+const GROUPS: [&str; 7] =
+    ["reduction", "charged-particle", "work-precision", "expression", "linearity", "scaling", "dimension"];
 
 fn stdout(output: &Output) -> String {
     assert!(output.status.success(), "bench failed:\n{}", String::from_utf8_lossy(&output.stderr));
@@ -78,6 +79,11 @@ fn quick_run_measures_every_group_and_writes_the_json_file() {
         let path = dir.0.join("out/bench").join(figure);
         assert!(std::fs::metadata(&path).map(|m| m.len() > 1000).unwrap_or(false), "{path:?}");
     }
+
+    // The two dimensions give the same trajectory, bit for bit.
+    let same: Vec<&str> = text.lines().filter(|l| l.contains("fixed and dynamic, max |q_N difference|")).collect();
+    assert!(same.len() >= 4, "{text}");
+    assert!(same.iter().all(|l| l.ends_with(": 0.00e0")), "{same:?}");
 
     // Every printed ratio: median, quartiles and extremes (and a target), all finite and positive.
     let ratios = printed_ratios(&text);

@@ -171,6 +171,13 @@ impl DynamicPendulumChain {
         let PendulumChain::<0> { m, l, g } = PendulumChain::default_parameters();
         Self { links, m, l, g }
     }
+
+    /// The chain as a type-erased system ([`ErasedDynamic`]), the engine the built-in
+    /// `pendulum_chain` runs for a number of links outside [`CHAIN_LINKS`]: for comparing the two
+    /// dimensions at the same number of links.
+    pub fn erased(self) -> Box<dyn DynSystem> {
+        Box::new(ErasedDynamic(self))
+    }
 }
 
 impl super::Parameters for DynamicPendulumChain {
