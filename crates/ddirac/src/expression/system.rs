@@ -191,7 +191,7 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
 impl ExpressionSpec {
     /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares.
-    /// Up to the largest of [`crate::SIZES`] (100) it runs in an engine whose arrays are sized when it
+    /// Up to the largest of [`crate::SIZES`] (50) it runs in an engine whose arrays are sized when it
     /// is compiled, on the stack: a count that is not itself one of the sizes in the engine of the
     /// next size up, with padding coordinates that it hides ([`crate::padding`]). Above, it runs in a
     /// dimension chosen at run time ([`crate::dim::Dynamic`], [`ExpressionLagrangian`]).
