@@ -23,6 +23,12 @@ const QUICK_LINKS: [usize; 2] = [16, 32];
 const STEP: f64 = 0.005;
 
 #[derive(Serialize)]
+struct Report {
+    /// One comparison per number of links and derivative path.
+    sizes: Vec<Sized>,
+}
+
+#[derive(Serialize)]
 struct Sized {
     links: usize,
     derivatives: &'static str,
@@ -34,16 +40,16 @@ struct Sized {
 /// Runs the group.
 pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     print::heading("dimension", "the chain in a fixed dimension against a dynamic one");
-    let mut report = Vec::new();
+    let mut sizes = Vec::new();
     let links: &[usize] = if settings.quick { &QUICK_LINKS } else { &LINKS };
     for &links in links.iter().filter(|n| CHAIN_LINKS.contains(n)) {
         for (derivatives, differentiation) in
             [("dual numbers", Differentiation::Dual), ("compiled", Differentiation::Compiled)]
         {
-            report.push(compared(settings, links, derivatives, differentiation)?);
+            sizes.push(compared(settings, links, derivatives, differentiation)?);
         }
     }
-    to_json(&report)
+    to_json(&Report { sizes })
 }
 
 fn compared(
