@@ -41,8 +41,8 @@ struct Sized {
 pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
     print::heading("dimension", "the chain in a fixed dimension against a dynamic one");
     let mut sizes = Vec::new();
-    let links: &[usize] = if settings.quick { &QUICK_LINKS } else { &LINKS };
-    for &links in links.iter().filter(|n| CHAIN_LINKS.contains(n)) {
+    let counts: &[usize] = if settings.quick { &QUICK_LINKS } else { &LINKS };
+    for &links in counts.iter().filter(|n| CHAIN_LINKS.contains(n)) {
         for (derivatives, differentiation) in
             [("dual numbers", Differentiation::Dual), ("compiled", Differentiation::Compiled)]
         {
@@ -63,7 +63,7 @@ fn compared(
     let steps = if settings.quick { 10 } else { full };
     let fixed = built_in_with("pendulum_chain", &[("links", links as f64)])?;
     let dynamic = DynamicPendulumChain::new(links).erased();
-    let problem: Problem = chain_problem(links, steps);
+    let problem = chain_problem(links, steps);
     let method = Method { differentiation, ..method(Rule::Midpoint, false, Variant::Plus) };
     let (fixed_contender, fixed_end) = stepping("fixed", fixed.as_ref(), &problem, &method)?;
     let (dynamic_contender, dynamic_end) = stepping("dynamic", dynamic.as_ref(), &problem, &method)?;
