@@ -69,12 +69,15 @@ impl<Dm: Dim> Factorization<Dm> {
                 }
                 col_of.as_mut().swap(k, pc);
             }
-            let pivot_row = lu[k].clone();
-            for r in k + 1..n {
-                let f = lu[r][k] / pivot_row[k];
-                lu[r][k] = f;
-                for c in k + 1..n {
-                    lu[r][c] -= f * pivot_row[c];
+            // Rows by slices: no copy of the pivot row and no bounds checks in a dynamic dimension.
+            let (above, below) = lu.as_mut().split_at_mut(k + 1);
+            let pivot_row = above[k].as_ref();
+            for row in below {
+                let row = row.as_mut();
+                let f = row[k] / pivot_row[k];
+                row[k] = f;
+                for (x, p) in row[k + 1..n].iter_mut().zip(&pivot_row[k + 1..n]) {
+                    *x -= f * p;
                 }
             }
             rank += 1;
@@ -116,19 +119,25 @@ impl<Dm: Dim> Factorization<Dm> {
         let n = self.dim.n();
         let mut y = self.dim.array(|k| b[self.row_of[k]]);
         let rank = self.rank.min(n);
-        for k in 0..rank {
-            let yk = y[k];
-            for r in k + 1..n {
-                y[r] -= self.lu[r][k] * yk;
+        let (lu, y_all) = (self.lu.as_ref(), y.as_mut());
+        // Forward substitution row by row (contiguous in `lu`): y_r −= L_rk y_k for k < min(r, rank)
+        // in ascending k, the operations of the column-by-column order.
+        for r in 1..n {
+            let (done, rest) = y_all.split_at_mut(r);
+            let k_end = r.min(rank);
+            let mut s = rest[0];
+            for (l, yk) in lu[r].as_ref()[..k_end].iter().zip(&done[..k_end]) {
+                s -= l * yk;
             }
+            rest[0] = s;
         }
         for k in (0..rank).rev() {
-            let row = &self.lu[k];
-            let mut s = y[k];
-            for c in k + 1..rank {
-                s -= row[c] * y[c];
+            let row = lu[k].as_ref();
+            let mut s = y_all[k];
+            for (a, yc) in row[k + 1..rank].iter().zip(&y_all[k + 1..rank]) {
+                s -= a * yc;
             }
-            y[k] = s / row[k];
+            y_all[k] = s / row[k];
         }
         let mut x = self.dim.zeros();
         for k in 0..rank {

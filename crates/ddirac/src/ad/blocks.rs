@@ -19,20 +19,35 @@ fn starts(n: usize) -> impl Iterator<Item = usize> + Clone {
     (0..n.max(1)).step_by(BLOCK)
 }
 
-/// `values` as dual numbers, those of `start .. start + BLOCK` along the directions `seed` sets.
-fn seeded<T: Copy>(values: &[f64], start: usize, constant: impl Fn(f64) -> T, seed: impl Fn(&mut T, usize)) -> Vec<T> {
-    let along = |j: usize| j.checked_sub(start).filter(|&c| c < BLOCK);
-    values
-        .iter()
-        .enumerate()
-        .map(|(j, &v)| {
-            let mut x = constant(v);
-            if let Some(c) = along(j) {
-                seed(&mut x, c);
-            }
-            x
-        })
-        .collect()
+/// `values` as constant dual numbers: the arguments of every pass, whose blocks [`Seeds::along`]
+/// seeds in turn (one allocation per call, not one per pass).
+struct Seeds<T> {
+    values: Vec<T>,
+}
+
+impl<T> Seeds<T> {
+    fn new(values: &[f64], constant: impl Fn(f64) -> T) -> Self {
+        Self { values: values.iter().map(|&v| constant(v)).collect() }
+    }
+
+    /// The values with those of `start .. start + BLOCK` along the directions `seed` sets to 1, for
+    /// `pass`; the seeds are taken back to 0 after it (every pass sees constants elsewhere).
+    fn along<R>(
+        &mut self,
+        start: usize,
+        seed: impl Fn(&mut T, usize) -> &mut f64,
+        pass: impl FnOnce(&Vec<T>) -> R,
+    ) -> R {
+        let end = (start + BLOCK).min(self.values.len());
+        for j in start..end {
+            *seed(&mut self.values[j], j - start) = 1.0;
+        }
+        let r = pass(&self.values);
+        for j in start..end {
+            *seed(&mut self.values[j], j - start) = 0.0;
+        }
+        r
+    }
 }
 
 /// [`super::mixed`] in a [`Dynamic`] dimension: ⌈n/BLOCK⌉² passes.
@@ -60,11 +75,10 @@ pub fn mixed_blocks<F: PairFunction<Dynamic>>(dim: Dynamic, f: &F, a: &[f64], b:
     let mut out: MixedDerivatives<Dynamic> =
         MixedDerivatives { value: 0.0, da: dim.zeros(), db: dim.zeros(), dadb: dim.matrix(|_, _| 0.0) };
     type M = Mixed<BLOCK, BLOCK>;
+    let (mut x, mut y) = (Seeds::new(a, M::constant), Seeds::new(b, M::constant));
     for row in starts(n) {
-        let x = seeded(a, row, M::constant, |x, c| x.a[c] = 1.0);
         for column in starts(n) {
-            let y = seeded(b, column, M::constant, |y, c| y.b[c] = 1.0);
-            let r = f.eval::<M>(&x, &y);
+            let r = x.along(row, |x, c| &mut x.a[c], |x| y.along(column, |y, c| &mut y.b[c], |y| f.eval::<M>(x, y)));
             let (rows, columns) = (BLOCK.min(n - row.min(n)), BLOCK.min(n - column.min(n)));
             if column == 0 {
                 out.value = r.re;
@@ -93,10 +107,9 @@ pub fn first_blocks<F: PairFunction<Dynamic>>(dim: Dynamic, f: &F, a: &[f64], b:
     let n = dim.n();
     let mut out: FirstDerivatives<Dynamic> = FirstDerivatives { value: 0.0, da: dim.zeros(), db: dim.zeros() };
     type G = Gradient<BLOCK, BLOCK>;
+    let (mut x, mut y) = (Seeds::new(a, G::constant), Seeds::new(b, G::constant));
     for start in starts(n) {
-        let x = seeded(a, start, G::constant, |x, c| x.a[c] = 1.0);
-        let y = seeded(b, start, G::constant, |y, c| y.b[c] = 1.0);
-        let r = f.eval::<G>(&x, &y);
+        let r = x.along(start, |x, c| &mut x.a[c], |x| y.along(start, |y, c| &mut y.b[c], |y| f.eval::<G>(x, y)));
         if start == 0 {
             out.value = r.re;
         }
