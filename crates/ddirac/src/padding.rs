@@ -1,7 +1,8 @@
-//! A text system with n coordinates run by the engine built for the next size up, M ∈ [`crate::SIZES`].
+//! A text system with n coordinates run by the engine built for a larger size M ∈ [`crate::SIZES`],
+//! on request ([`crate::expression::ExpressionSpec::into_dyn_in`]): for measuring what a larger
+//! engine costs and holding the runs of two engines against each other.
 //!
-//! The engine's dimensions are const generics, so it exists for the sizes of [`crate::SIZES`] only.
-//! A system with n coordinates between two of them is embedded in the next one: it gets M − n
+//! The system is embedded in the larger engine: it gets M − n
 //! *padding coordinates*, shape coordinates on ℝ with the Lagrangian ½ c v² each, added to L. They
 //! are decoupled from the system's own coordinates and start at q = p = 0, so every discrete scheme
 //! keeps them at exactly 0: their step equations are c (q₁ − q₀)/h = p = 0 whatever the other

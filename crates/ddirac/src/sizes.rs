@@ -3,26 +3,27 @@
 //! The engine's dimensions are const generics (every dual number and matrix of a step lives on the
 //! stack), so each number of coordinates a spec can choose at run time is a separate copy of the
 //! engine behind [`crate::Erased`]. Text systems ([`crate::expression::ExpressionSpec::into_dyn`]) and
-//! the built-in chain of pendula take their sizes from this one list, [`SIZES`]: every count up to 16,
-//! then 20, 24, 32, 40 and 50; and both are erased as one system type, [`RuntimeSized`], so that each
-//! size is one copy of the engine, not one per system type.
+//! the built-in chain of pendula take their sizes from this one list, [`SIZES`]: every count from 1
+//! to 16; and both are erased as one system type, [`RuntimeSized`], so that each size is one copy of
+//! the engine, not one per system type.
 //!
-//! A text system whose count lies between two sizes runs in the next one up, with padding
-//! coordinates that it hides ([`crate::padding`]). Above 50 both run in a dimension chosen at run
-//! time ([`crate::dim::Dynamic`]), which is faster there than the fixed arrays were (at 64 and 100
-//! links the dynamic chain took 0.54–0.68 of the fixed chain's time per step, `ddirac bench --only
-//! dimension` before 64, 80 and 100 left this list; BENCHMARKS.md).
+//! Above 16 both run in a dimension chosen at run time ([`crate::dim::Dynamic`]), which costs no more
+//! per step there: against the chain in its fixed dimension, the dynamic chain took 0.82 and 0.98 of
+//! its time per step at 24 links (dual numbers, compiled), 0.73 and 0.90 at 32 and 0.84 and 0.71 at
+//! 50; at 20, 1.02 and 1.06; at 16, 1.13 with compiled derivatives, which is why 16 stays (`ddirac
+//! bench --only dimension` before 20, 24, 32, 40 and 50 left this list; BENCHMARKS.md). Each size
+//! left is a copy of the engine fewer to compile, the larger the more.
 
 use crate::expression::ExpressionSystem;
 use crate::systems::PendulumChain;
 use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
 
-/// Calls `$callback!(1 2 … 16 20 24 32 40 50)`: the sizes of [`SIZES`] as literals, for the
+/// Calls `$callback!(1 2 … 16)`: the sizes of [`SIZES`] as literals, for the
 /// dispatches that instantiate the engine for each.
 #[cfg(not(test))]
 macro_rules! with_sizes {
     ($callback:ident) => {
-        $callback! { 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 24 32 40 50 }
+        $callback! { 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 }
     };
 }
 
@@ -47,10 +48,8 @@ macro_rules! list {
 /// The numbers of coordinates a type-erased system can have, ascending.
 ///
 /// ```
-/// assert_eq!(ddirac::SIZES.len(), 21);
-/// assert!(ddirac::SIZES.contains(&16) && ddirac::SIZES.contains(&50));
-/// assert!(!ddirac::SIZES.contains(&64));
-/// assert!(!ddirac::SIZES.contains(&17));
+/// assert_eq!(ddirac::SIZES, (1..=16).collect::<Vec<_>>());
+/// assert!(!ddirac::SIZES.contains(&17) && !ddirac::SIZES.contains(&50));
 /// ```
 pub const SIZES: &[usize] = with_sizes!(list);
 
@@ -59,10 +58,10 @@ pub(crate) fn engine_size(n: usize) -> Option<usize> {
     SIZES.iter().copied().find(|&m| m >= n.max(1))
 }
 
-/// The sizes as a reader would write them: `1–16, 20, 24, 32, 40, 50`.
+/// The sizes as a reader would write them: `1–16`.
 ///
 /// ```
-/// assert_eq!(ddirac::sizes_text(), "1–16, 20, 24, 32, 40, 50");
+/// assert_eq!(ddirac::sizes_text(), "1–16");
 /// ```
 pub fn sizes_text() -> String {
     let mut parts: Vec<String> = Vec::new();

@@ -2,10 +2,11 @@
 //! (`ddirac::expression::ExpressionSpec::into_dyn`, the spec shared with the library's expression tests and
 //! benchmark) against the same Lagrangian in Rust (`systems::DoubleSphericalPendulum`): whole runs,
 //! reduced (+), midpoint rule, h = 0.01; and the chain of 50 pendula written as text against the
-//! built-in `PendulumChain<50>`, both type-erased as a spec runs them, compiled derivatives, time per
-//! step after set-up (each batch restarts one prepared stepper from its first state); and what padding
-//! costs: the text chain of 17, run in the engine of 20 with padding coordinates
-//! (`ddirac::padding`), against the text chains of 16 and 20, per step.
+//! built-in `pendulum_chain` of 50 links (both in a dimension chosen at run time, type-erased as a
+//! spec runs them), compiled derivatives, time per step after set-up (each batch restarts one
+//! prepared stepper from its first state); and what padding
+//! costs: the text chain of 13, run in the engine of 16 with padding coordinates
+//! (`ddirac::padding`), against the text chains of 13 and 16, per step.
 
 use ddirac::systems::{DoubleSphericalPendulum, PendulumChain};
 use ddirac::{Differentiation, Method, Problem, Rule, Variant};
@@ -36,7 +37,7 @@ struct Report {
     final_q_difference: f64,
     /// The chain of 50 pendula, per step.
     chain: ChainReport,
-    /// The padded chain of 17 against the chains of 16 and 20, per step.
+    /// The padded chain of 13 against the chains of 13 and 16, per step.
     padding: Comparison,
 }
 
@@ -100,30 +101,30 @@ fn chain(settings: &Settings) -> Result<ChainReport, miette::Report> {
     Ok(ChainReport { comparison, final_q_difference: difference })
 }
 
-/// The text chain of 17 links, padded to the engine of 20, against the text chains of 16 and 20,
-/// per step (compiled derivatives): what running between the engine's sizes costs.
+/// The text chain of 13 links, padded to the engine of 16, against the text chains of 13 and 16,
+/// per step (compiled derivatives): what running in a larger engine costs.
 fn padding(settings: &Settings) -> Result<Comparison, miette::Report> {
     let steps = if settings.quick { 20 } else { 400 };
     let compiled =
         Method { differentiation: Differentiation::Compiled, ..method(Rule::Midpoint, false, Variant::Plus) };
-    let chains = [16, 17, 20].map(|links| {
+    let chains = [(13, 13), (13, 16), (16, 16)].map(|(links, size)| {
         chain_text::chain_spec(links)
-            .into_dyn()
+            .into_dyn_in(size)
             .map_err(|e| miette::miette!("the chain of {links} written as text does not compile: {e}"))
     });
-    let [sixteen, seventeen, twenty] = chains;
-    let (sixteen, seventeen, twenty) = (sixteen?, seventeen?, twenty?);
+    let [thirteen, padded, sixteen] = chains;
+    let (thirteen, padded, sixteen) = (thirteen?, padded?, sixteen?);
     let problem = |links: usize| {
         let q0 = (1..=links).map(|i| 0.5 * (std::f64::consts::PI * i as f64 / (links + 1) as f64).sin()).collect();
         Problem::new(0.005, steps, q0, ddirac::InitialMomentum::Momentum(vec![0.0; links]))
     };
     let contenders = vec![
+        stepping("13", thirteen.as_ref(), &problem(13), &compiled)?.0,
+        stepping("13 in 16", padded.as_ref(), &problem(13), &compiled)?.0,
         stepping("16", sixteen.as_ref(), &problem(16), &compiled)?.0,
-        stepping("17 in 20", seventeen.as_ref(), &problem(17), &compiled)?.0,
-        stepping("20", twenty.as_ref(), &problem(20), &compiled)?.0,
     ];
-    let title = format!("text chains of 16, 17 (padded to 20) and 20 pendula, compiled, {steps} steps per batch");
-    let pairs = [Pair::new("17 in 20", "16"), Pair::new("17 in 20", "20")];
+    let title = format!("text chains of 13, 13 (padded to 16) and 16 pendula, compiled, {steps} steps per batch");
+    let pairs = [Pair::new("13 in 16", "13"), Pair::new("13 in 16", "16")];
     let comparison = compare(title, settings.schedule, contenders, &pairs)?;
     print::comparison(&comparison);
     Ok(comparison)

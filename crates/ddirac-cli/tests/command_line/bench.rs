@@ -199,11 +199,11 @@ fn only_runs_the_groups_named() {
     for group in GROUPS.iter().filter(|g| **g != "expression") {
         assert!(!text.contains(&format!("== {group}:")), "`{group}` ran:\n{text}");
     }
-    // The double spherical pendulum and the chain of 50, text against Rust; the padded chain of 17
-    // against those of 16 and 20.
+    // The double spherical pendulum and the chain of 50, text against Rust; the padded chain of 13
+    // against those of 13 and 16.
     let ratios = printed_ratios(&text);
     let names: Vec<&str> = ratios.iter().map(|r| r.0.as_str()).collect();
-    assert_eq!(names, ["text / Rust", "text / Rust", "17 in 20 / 16", "17 in 20 / 20"], "{text}");
+    assert_eq!(names, ["text / Rust", "text / Rust", "13 in 16 / 13", "13 in 16 / 16"], "{text}");
 
     let text = stdout(&ddirac(&["bench", "--quick", "--rounds", "2", "--only", "linearity,charged-particle"], &dir.0));
     assert!(text.contains("== linearity:") && text.contains("== charged-particle:"), "{text}");

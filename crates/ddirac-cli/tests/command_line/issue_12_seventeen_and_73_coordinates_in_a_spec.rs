@@ -1,8 +1,7 @@
-//! Specs of 17 and 73 coordinates (issue 12: text systems of any number of coordinates) run from the
-//! command line in the engines of 20 and 80 with padding coordinates that never show, and specs of
-//! 101 and 150 in a dimension chosen at run time: the trajectory has the spec's columns of q and of
-//! p, the summary and `ddirac check` speak of the spec's coordinates, and the motion is the midpoint
-//! rule's exact rotation of each oscillator.
+//! Specs of 17, 73, 101 and 150 coordinates (issue 12: text systems of any number of coordinates) run
+//! from the command line in a dimension chosen at run time: the trajectory has the spec's columns of
+//! q and of p, the summary and `ddirac check` speak of the spec's coordinates, and the motion is the
+//! midpoint rule's exact rotation of each oscillator.
 
 use crate::common;
 

@@ -191,10 +191,9 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
 
 impl ExpressionSpec {
     /// Checks and compiles the spec into a type-erased system with as many coordinates as it declares.
-    /// Up to the largest of [`crate::SIZES`] (50) it runs in an engine whose arrays are sized when it
-    /// is compiled, on the stack: a count that is not itself one of the sizes in the engine of the
-    /// next size up, with padding coordinates that it hides ([`crate::padding`]). Above, it runs in a
-    /// dimension chosen at run time ([`crate::dim::Dynamic`], [`ExpressionLagrangian`]).
+    /// Up to the largest of [`crate::SIZES`] (16) it runs in an engine whose arrays are sized when it
+    /// is compiled, on the stack; above, in a dimension chosen at run time ([`crate::dim::Dynamic`],
+    /// [`ExpressionLagrangian`]).
     ///
     /// ```
     /// use ddirac::expression::{ExpressionError, ExpressionSpec};
@@ -218,7 +217,7 @@ impl ExpressionSpec {
     /// [`ExpressionSpec::into_dyn`] in the engine of `size` coordinates, one of [`crate::SIZES`] and
     /// at least the spec's count; the coordinates beyond the spec's are padding
     /// ([`crate::padding`]). For comparing a padded run with an unpadded one, and for measuring what
-    /// the padding costs.
+    /// a larger engine costs.
     ///
     /// ```
     /// use ddirac::expression::{ExpressionError, ExpressionSpec};

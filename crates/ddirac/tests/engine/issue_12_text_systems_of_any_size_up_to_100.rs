@@ -1,17 +1,18 @@
-//! Text systems of any number of coordinates up to 100 (issue 12): a count up to 50 that is not one
-//! of `ddirac::SIZES` runs in the engine of the next size up, with padding coordinates that the
-//! type-erased system hides (`ddirac::expression::ExpressionSpec::into_dyn_in`).
+//! Text systems of any number of coordinates up to 100 (issue 12): every count of `ddirac::SIZES`
+//! (1–16) runs in the engine of its size, every other in a dimension chosen at run time
+//! (`issue_12_systems_in_a_dynamic_dimension.rs`); a system can also be run in a larger engine, with
+//! padding coordinates that the type-erased system hides
+//! (`ddirac::expression::ExpressionSpec::into_dyn_in`).
 //!
 //! - The padding is invisible: a system run with padding equals the same system run without, row by
-//!   row and bit for bit — a chain of 16 in the engine of 20, the double spherical pendulum (reduced,
+//!   row and bit for bit — a chain of 13 in the engine of 16, the double spherical pendulum (reduced,
 //!   with a connection) in that of 8, and the spherical pendulum with its atlas switching charts.
-//! - Sizes between the engine's run and are right: 17, 33, 49 and 73 uncoupled oscillators against
+//! - Counts outside the sizes run and are right: 17, 33, 49 and 73 uncoupled oscillators against
 //!   their exact solution, with the midpoint rule's second order.
 //! - The padding takes the system's scale: oscillators with an electron's mass in SI units (entries
 //!   of 10⁻³⁰ in every Jacobian) move as those of mass 1.
 //! - Errors name the system's own sizes, the stepper restarts bit for bit, the check counts the
-//!   system's own coordinates, and every count up to 100 and beyond runs (above the largest size, 50,
-//!   in a dynamic dimension: `issue_12_systems_in_a_dynamic_dimension.rs`).
+//!   system's own coordinates, and every count up to 100 and beyond runs.
 
 use crate::chain_text;
 use crate::pendulum_text;
@@ -89,12 +90,12 @@ fn method(rule: Rule, reduced: bool, differentiation: Differentiation) -> Method
 }
 
 #[test]
-fn a_chain_of_16_padded_to_20_runs_bit_for_bit_as_without_padding() {
-    let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / 17.0).sin();
-    let problem = Problem::new(0.005, 200, (1..=16).map(arch).collect(), InitialMomentum::Momentum(vec![0.0; 16]));
+fn a_chain_of_13_padded_to_16_runs_bit_for_bit_as_without_padding() {
+    let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / 14.0).sin();
+    let problem = Problem::new(0.005, 200, (1..=13).map(arch).collect(), InitialMomentum::Momentum(vec![0.0; 13]));
     for differentiation in [Differentiation::Dual, Differentiation::Compiled] {
         let summary =
-            padding_is_invisible(&chain_spec(16), 20, &problem, &method(Rule::Midpoint, false, differentiation));
+            padding_is_invisible(&chain_spec(13), 16, &problem, &method(Rule::Midpoint, false, differentiation));
         assert!(summary.final_q[0] != problem.q0[0], "the chain should move");
     }
 }
@@ -211,11 +212,12 @@ fn seventeen_33_49_and_73_oscillators_follow_their_exact_solution_to_second_orde
 }
 
 #[test]
-fn seventeen_oscillators_with_an_electrons_mass_move_as_those_of_mass_1() {
+fn thirteen_oscillators_padded_to_16_with_an_electrons_mass_move_as_those_of_mass_1() {
     let electron = 9.109e-31;
-    let n = 17;
+    let n = 13;
     let problem = oscillator_problem(n, 0.02);
-    let (heavy, light) = (oscillators(n, 1.0).into_dyn().unwrap(), oscillators(n, electron).into_dyn().unwrap());
+    let padded = |m: f64| oscillators(n, m).into_dyn_in(16).unwrap();
+    let (heavy, light) = (padded(1.0), padded(electron));
     let method = method(Rule::Midpoint, false, Differentiation::Auto);
     let report = light.check(&problem, &method).unwrap();
     assert_eq!((report.legendre_rank, report.coordinates), (n, n));
@@ -227,22 +229,22 @@ fn seventeen_oscillators_with_an_electrons_mass_move_as_those_of_mass_1() {
 
 #[test]
 fn errors_of_a_padded_system_name_its_own_sizes() {
-    let system = oscillators(17, 1.0).into_dyn().unwrap();
+    let system = oscillators(13, 1.0).into_dyn_in(16).unwrap();
     let method = method(Rule::Midpoint, false, Differentiation::Auto);
-    let short = Problem::new(0.01, 10, vec![1.0; 16], InitialMomentum::Momentum(vec![0.0; 17]));
+    let short = Problem::new(0.01, 10, vec![1.0; 12], InitialMomentum::Momentum(vec![0.0; 13]));
     let error = system.integrate(&short, &method, &OutputOptions::default(), &mut |_| Ok(())).unwrap_err();
-    assert!(matches!(error, Error::Size { what: Input::InitialConfiguration, expected: 17, found: 16 }), "{error:?}");
-    let long = Problem::new(0.01, 10, vec![1.0; 17], InitialMomentum::Velocity(vec![0.0; 20]));
+    assert!(matches!(error, Error::Size { what: Input::InitialConfiguration, expected: 13, found: 12 }), "{error:?}");
+    let long = Problem::new(0.01, 10, vec![1.0; 13], InitialMomentum::Velocity(vec![0.0; 16]));
     let error = system.check(&long, &method).unwrap_err();
-    assert!(matches!(error, Error::Size { what: Input::InitialVelocity, expected: 17, found: 20 }), "{error:?}");
-    let mut nan = oscillator_problem(17, 0.01);
-    nan.q0[16] = f64::NAN;
+    assert!(matches!(error, Error::Size { what: Input::InitialVelocity, expected: 13, found: 16 }), "{error:?}");
+    let mut nan = oscillator_problem(13, 0.01);
+    nan.q0[12] = f64::NAN;
     let error = system.stepper(&nan, &method).err().expect("refused");
-    assert!(matches!(error, Error::NonFinite { what: Input::InitialConfiguration, entry: Some(16), .. }), "{error:?}");
+    assert!(matches!(error, Error::NonFinite { what: Input::InitialConfiguration, entry: Some(12), .. }), "{error:?}");
 
-    let mut stepper = system.stepper(&oscillator_problem(17, 0.01), &method).unwrap();
-    let error = stepper.restart(&DynState::new(0, vec![0.0; 20], vec![0.0; 20])).unwrap_err();
-    assert!(matches!(error, Error::Size { what: Input::State, expected: 17, found: 20 }), "{error:?}");
+    let mut stepper = system.stepper(&oscillator_problem(13, 0.01), &method).unwrap();
+    let error = stepper.restart(&DynState::new(0, vec![0.0; 16], vec![0.0; 16])).unwrap_err();
+    assert!(matches!(error, Error::Size { what: Input::State, expected: 13, found: 16 }), "{error:?}");
 }
 
 #[test]
@@ -272,12 +274,12 @@ fn a_connection_of_a_padded_system_has_its_own_shape_coordinates() {
 
 #[test]
 fn a_padded_stepper_restarts_bit_for_bit_and_the_check_counts_the_systems_own_coordinates() {
-    let system = chain_spec(19).into_dyn().unwrap();
-    let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / 20.0).sin();
-    let problem = Problem::new(0.005, 40, (1..=19).map(arch).collect(), InitialMomentum::Momentum(vec![0.0; 19]));
+    let system = chain_spec(13).into_dyn_in(16).unwrap();
+    let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / 14.0).sin();
+    let problem = Problem::new(0.005, 40, (1..=13).map(arch).collect(), InitialMomentum::Momentum(vec![0.0; 13]));
     let method = method(Rule::Midpoint, false, Differentiation::Auto);
     let report = system.check(&problem, &method).unwrap();
-    assert_eq!((report.legendre_rank, report.coordinates), (19, 19));
+    assert_eq!((report.legendre_rank, report.coordinates), (13, 13));
     assert!(report.regular());
 
     let mut stepper = system.stepper(&problem, &method).unwrap();
@@ -285,9 +287,9 @@ fn a_padded_stepper_restarts_bit_for_bit_and_the_check_counts_the_systems_own_co
         stepper.step().unwrap();
     }
     let saved = stepper.state();
-    assert_eq!((saved.q().len(), saved.p().len()), (19, 19));
+    assert_eq!((saved.q().len(), saved.p().len()), (13, 13));
     let ahead: Vec<_> = (0..5).map(|_| (stepper.step().unwrap(), stepper.row())).collect();
-    assert_eq!(ahead[4].1.q.len(), 19);
+    assert_eq!(ahead[4].1.q.len(), 13);
     stepper.restart(&saved).unwrap();
     let again: Vec<_> = (0..5).map(|_| (stepper.step().unwrap(), stepper.row())).collect();
     assert_eq!(ahead, again);
@@ -296,7 +298,7 @@ fn a_padded_stepper_restarts_bit_for_bit_and_the_check_counts_the_systems_own_co
     let cold = stepper.step().unwrap();
     assert_eq!(cold.k, ahead[0].0.k);
     let summary = stepper.finish().unwrap();
-    assert_eq!((summary.coordinates.len(), summary.final_q.len(), summary.final_p.len()), (19, 19, 19));
+    assert_eq!((summary.coordinates.len(), summary.final_q.len(), summary.final_p.len()), (13, 13, 13));
 }
 
 #[test]
@@ -311,13 +313,17 @@ fn engine_sizes_are_checked_and_every_count_runs() {
 }
 
 #[test]
-fn text_chains_of_41_50_and_65_run_on_a_thread_of_2_mib() {
-    // 41 coordinates run in the engine of 50 and 50 in that of 50, the largest engines with arrays on
-    // the stack: what the padding's mass and a step need beyond the thread's stack they take from
-    // the heap (`ddirac::stack`); 65 run in a dynamic dimension, on the heap.
+fn text_chains_of_13_to_17_and_65_run_on_a_thread_of_2_mib() {
+    // 13 coordinates padded to the engine of 16 and 16 in that of 16, the largest engine with arrays
+    // on the stack: what the padding's mass and a step need beyond the thread's stack they take from
+    // the heap (`ddirac::stack`); 17 and 65 run in a dynamic dimension, on the heap.
     let run = || {
-        for n in [41, 50, 65] {
-            let system = chain_spec(n).into_dyn().unwrap();
+        for (n, size) in [(13, Some(16)), (16, None), (17, None), (65, None)] {
+            let spec = chain_spec(n);
+            let system = match size {
+                Some(size) => spec.into_dyn_in(size).unwrap(),
+                None => spec.into_dyn().unwrap(),
+            };
             let arch = |i: usize| 0.5 * (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin();
             let q0 = (1..=n).map(arch).collect();
             let problem = Problem::new(0.005, 3, q0, InitialMomentum::Momentum(vec![0.0; n]));
