@@ -1,5 +1,6 @@
 //! `scaling`: time per step against the number of coordinates, for a planar chain of N pendula
-//! (built-in `pendulum_chain`, `systems::PendulumChain<N>` as a spec runs it, released from rest in one arch; midpoint rule, unreduced, as the
+//! (built-in `pendulum_chain` as a spec runs it: `systems::PendulumChain<N>` up to 16 links, above in a
+//! dimension chosen at run time; released from rest in one arch; midpoint rule, unreduced, as the
 //! chain has no symmetry; h = 0.01) with N = 2 … 50, all sizes timed side by side. Between two
 //! sizes the ratio of times per step gives the exponent p of time ∝ N^p.
 
