@@ -315,8 +315,8 @@ fn engine_sizes_are_checked_and_every_count_runs() {
 #[test]
 fn text_chains_of_13_to_17_and_65_run_on_a_thread_of_2_mib() {
     // 13 coordinates padded to the engine of 16 and 16 in that of 16, the largest engine with arrays
-    // on the stack: what the padding's mass and a step need beyond the thread's stack they take from
-    // the heap (`ddirac::stack`); 17 and 65 run in a dynamic dimension, on the heap.
+    // on the stack, whose steps fit any thread of 2 MiB (`ddirac::stack::ON_ANY_THREAD`); 17 and 65
+    // run in a dynamic dimension, on the heap.
     let run = || {
         for (n, size) in [(13, Some(16)), (16, None), (17, None), (65, None)] {
             let spec = chain_spec(n);
