@@ -4,9 +4,9 @@
 //! reduced (+), midpoint rule, h = 0.01; and the chain of 50 pendula written as text against the
 //! built-in `pendulum_chain` of 50 links (both in a dimension chosen at run time, type-erased as a
 //! spec runs them), compiled derivatives, time per step after set-up (each batch restarts one
-//! prepared stepper from its first state); and what padding
-//! costs: the text chain of 13, run in the engine of 16 with padding coordinates
-//! (`ddirac::padding`), against the text chains of 13 and 16, per step.
+//! prepared stepper from its first state); and what padding costs: the text chain of 13, run in the
+//! engine of 16 with padding coordinates (`ddirac::padding`), against the text chains of 13 and 16,
+//! per step.
 
 use ddirac::systems::{DoubleSphericalPendulum, PendulumChain};
 use ddirac::{Differentiation, Method, Problem, Rule, Variant};
