@@ -26,7 +26,7 @@ fn findings<'py>(py: Python<'py>, findings: &[Finding], tolerance: f64) -> PyRes
 
 /// Tests the hypotheses of the run `run_args` of `system` near the
 /// initial data; returns the findings and the verdict (`runs`, and the `error` a run would fail with
-/// or the `warnings` it would run with).
+/// or the `warnings` it would run with, as a run's summary lists them).
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, system: &SystemHandle, run_args: RunArgs) -> PyResult<Bound<'py, PyDict>> {
     let (problem, method) = run_args.problem_and_method()?;
@@ -51,7 +51,7 @@ pub fn check<'py>(py: Python<'py>, system: &SystemHandle, run_args: RunArgs) -> 
         Ok(warnings) => {
             verdict.set_item("runs", true)?;
             verdict.set_item("error", py.None())?;
-            verdict.set_item("warnings", warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>())?;
+            verdict.set_item("warnings", crate::simulate::warnings(py, &warnings)?)?;
         }
         Err(e) => {
             verdict.set_item("runs", false)?;

@@ -400,16 +400,21 @@ fn summary_dict<'py>(
     d.set_item("wall_seconds", s.wall_seconds)?;
     d.set_item("reference_error", s.reference_error)?;
     d.set_item("chart_switches", s.chart_switches)?;
-    let warnings = PyList::empty(py);
-    for w in &s.warnings {
+    d.set_item("warnings", warnings(py, &s.warnings)?)?;
+    Ok(d)
+}
+
+/// Warnings as `summary.json` lists them: `{kind, step, t, message, count}` each.
+pub(crate) fn warnings<'py>(py: Python<'py>, warnings: &[ddirac::Warning]) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for w in warnings {
         let entry = PyDict::new(py);
         entry.set_item("kind", w.kind.name())?;
         entry.set_item("step", w.step)?;
         entry.set_item("t", w.t)?;
         entry.set_item("message", &w.message)?;
         entry.set_item("count", w.count)?;
-        warnings.append(entry)?;
+        list.append(entry)?;
     }
-    d.set_item("warnings", warnings)?;
-    Ok(d)
+    Ok(list)
 }
