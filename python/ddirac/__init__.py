@@ -17,6 +17,11 @@ A spec file runs as ``ddirac run`` runs it: ``ddirac.load("spec.toml", overrides
 False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause;
 its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text``, ``span``),
 :class:`InvarianceError` and :class:`ConvergenceError` (``step``, ``t``, ``residual``) say more.
+
+A run that completes with warnings (``run.summary["warnings"]``) also emits them through the
+:mod:`warnings` module as :class:`ddirac.RunWarning` subclasses, one per kind (:class:`EnergyJumpWarning`,
+:class:`SubdividedWarning`, ...): ``warnings.simplefilter("error", ddirac.RunWarning)`` turns a warned run
+into an exception, ``warnings.simplefilter("ignore", ddirac.SubdividedWarning)`` silences one kind.
 """
 
 from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
@@ -24,9 +29,17 @@ from .system import System, builtin_systems
 from .convergence import convergence
 from .ensembles import EnsembleResult, ensemble
 from .run import Run, check, simulate
+from .run_warnings import (
+    ChartNotInverseWarning, EnergyDriftWarning, EnergyJumpWarning, InvarianceUndecidedWarning, LooseToleranceWarning,
+    NewtonFallbackWarning, NotInvariantWarning, RunWarning, SingularChartWarning, SubdividedWarning,
+    UnderResolvedWarning,
+)
 from .spec import Spec, load
 
 __all__ = [
     "ConvergenceError", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError",
     "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
+    "RunWarning", "ChartNotInverseWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
+    "LooseToleranceWarning", "NewtonFallbackWarning", "NotInvariantWarning", "SingularChartWarning",
+    "SubdividedWarning", "UnderResolvedWarning",
 ]

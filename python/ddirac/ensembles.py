@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from . import _ddirac
+from .run_warnings import warn_members
 
 #: Per-member diagnostics, as ``ddirac ensemble`` names its arrays (NaN for a failed member).
 DIAGNOSTICS = (
@@ -25,7 +26,9 @@ class EnsembleResult:
     ``final_q``, ``final_p`` (members × n: q_N and p_N, or the state of the failed step),
     ``status`` (``"ok"`` or ``"failed"`` per member), ``steps`` (steps taken), ``diagnostics`` (a dict
     of arrays, :data:`DIAGNOSTICS`), ``failures`` (a list of dicts ``member``, ``step``, ``t``,
-    ``error``), ``members`` (a dict of the varied values by key), ``coordinates``; with trajectories
+    ``error``), ``members`` (a dict of the varied values by key), ``coordinates``, ``warnings`` (a dict:
+    warning kind → the number of members whose run had it), ``derivatives`` (the derivative path → the
+    number of members that took it); with trajectories
     ``t`` (rows), ``q`` and ``p`` (members × rows × n) and ``energy`` (members × rows), NaN after a
     failed member's last row.
     """
@@ -144,6 +147,9 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
     released), and the parts come back as the same arrays, bit for bit equal to the local run; a chunk
     whose worker dies is run again elsewhere by Dask. ``trajectories=True`` also returns every member's
     rows (at the spec's ``output.every``); the default is the spec's ``[ensemble] trajectories``.
+
+    The members' warnings are emitted once per kind as :class:`ddirac.RunWarning` subclasses, each with
+    the number of members that had it (``count``; ``EnsembleResult.warnings`` holds these numbers).
     """
     path, text, assignments = _source(spec)
     if members is None:
@@ -160,7 +166,7 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
         finally:
             if close is not None:
                 close()
-        return EnsembleResult(parts)
+        return _warned(EnsembleResult(parts))
     count = len(columns[0][1]) if columns else 0
     if count == 0:
         raise _ddirac.Error("the ensemble has no members")
@@ -174,4 +180,10 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
         futures.append(client.submit(_run_chunk, path, text, assignments, part, start, 1, trajectories,
                                      key=f"ddirac-ensemble-{os.getpid()}-{id(futures)}-{start}"))
     parts = client.gather(futures)
-    return EnsembleResult(parts)
+    return _warned(EnsembleResult(parts))
+
+
+def _warned(result: EnsembleResult) -> EnsembleResult:
+    """``result``, its warnings emitted: one per kind, with the number of members that had it."""
+    warn_members(result.warnings, len(result))
+    return result

@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from . import _ddirac
+from .run_warnings import warn_run
 
 #: Method keys :func:`simulate` takes besides ``rule``, ``variant`` and ``reduced``, with their
 #: defaults (as the ``[method]`` table of a spec).
@@ -108,7 +109,19 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.
     ``progress`` shows a bar (``True``; by default only in a notebook), or is called as
     ``progress(k, steps)`` about ten times a second.
+
+    The run's warnings (``summary["warnings"]``) are also emitted as :class:`ddirac.RunWarning`
+    subclasses, one per kind (``warnings.simplefilter("error", ddirac.RunWarning)`` makes them errors).
     """
+    result = _simulate(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, every, wrap_angles,
+                       progress, **method)
+    warn_run(result.summary["warnings"])
+    return result
+
+
+def _simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint", variant="plus",
+              reduced=False, every=1, wrap_angles=False, progress=None, **method) -> Run:
+    """:func:`simulate` without emitting the run's warnings (they are in its summary)."""
     args = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
     every = _count(every, "every")
     from .progress import callback
@@ -129,9 +142,13 @@ def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, ru
     integrating: the invariance of L_d under each group translation (reduced runs), the
     2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map and the
     primary constraint. Returns the findings as a dict, with ``verdict``: whether such a run would
-    go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with."""
-    return _ddirac.check(system._handle, _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced,
-                                                  method))
+    go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with (each
+    ``{kind, step, t, message, count}``, as in a run's summary; they are also emitted as
+    :class:`ddirac.RunWarning` subclasses)."""
+    report = _ddirac.check(system._handle, _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced,
+                                                    method))
+    warn_run(report["verdict"]["warnings"], what="a run with these arguments would warn")
+    return report
 
 
 def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method):

@@ -7,6 +7,7 @@ import os
 import numpy as np
 
 from . import _ddirac
+from .run_warnings import warn_run
 
 
 def load(path, overrides=None):
@@ -46,7 +47,10 @@ class Spec:
 
         With ``out`` (a directory) or ``write=True`` (the spec's own directory) it also writes the files
         ``ddirac run`` writes there (trajectory, ``summary.json``, figures as the spec asks), staged and
-        committed as a set, and the run's arrays are read back from them."""
+        committed as a set, and the run's arrays are read back from them.
+
+        The run's warnings (``summary["warnings"]``) are also emitted as :class:`ddirac.RunWarning`
+        subclasses, as :func:`ddirac.simulate` emits them."""
         from .run import Run
 
         if out is None and not write:
@@ -58,9 +62,12 @@ class Spec:
             finally:
                 if close is not None:
                     close()
-            return Run(arrays, self.system.coordinates, self.system.group)
-        directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
-        return _read_run(directory, self.system)
+            run = Run(arrays, self.system.coordinates, self.system.group)
+        else:
+            directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
+            run = _read_run(directory, self.system)
+        warn_run(run.summary["warnings"])
+        return run
 
     def check(self):
         """:func:`ddirac.check` of this spec's system, initial data, time grid and method."""
