@@ -2,6 +2,8 @@
 
 import pathlib
 
+import pytest
+
 import ddirac
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
@@ -24,8 +26,10 @@ def test_a_system_that_is_not_invariant_is_found_out_without_integrating():
     assert report["invariance"][0]["deviation"] > 1e-3
     assert not report["verdict"]["runs"] and "theta" in report["verdict"]["error"]
     # Without the check, the run would go, with a warning.
-    unchecked = ddirac.check(pendulum, q0=[1.0], p0=[0.0], step=0.01, steps=10, reduced=True, check_invariance=False)
-    assert unchecked["verdict"]["runs"] and unchecked["verdict"]["warnings"]
+    with pytest.warns(ddirac.NotInvariantWarning):
+        unchecked = ddirac.check(pendulum, q0=[1.0], p0=[0.0], step=0.01, steps=10, reduced=True,
+                                 check_invariance=False)
+    assert unchecked["verdict"]["runs"] and [w["kind"] for w in unchecked["verdict"]["warnings"]] == ["not_invariant"]
 
 
 def test_a_degenerate_lagrangian_reports_its_rank_and_the_primary_constraint():

@@ -10,7 +10,10 @@ EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 
 
 def test_the_charged_particles_table_is_the_papers_table_1_against_the_exact_solution():
-    table = ddirac.load(EXAMPLES / "charged_particle.toml").convergence([10, 50, 100, 200])
+    # The coarsest row, h = 2, turns theta by 2 rad a step, and says so.
+    with pytest.warns(ddirac.UnderResolvedWarning) as record:
+        table = ddirac.load(EXAMPLES / "charged_particle.toml").convergence([10, 50, 100, 200])
+    assert [w.message.step_sizes for w in record] == [[2.0]] and table["warnings"] == {"under_resolved": [2.0]}
     assert table["reference"] == "exact" and table["steps"] == [10, 50, 100, 200]
     printed = [1.6781, 0.25971, 0.06626, 0.01664]
     assert [float(f"{e:.4g}") for e in table["error"]] == [float(f"{p:.4g}") for p in printed]
