@@ -5,9 +5,10 @@
 //! The two runs go to `DIR/reduced` and `DIR/unreduced` as ordinary runs; `DIR/compare.csv` holds,
 //! row by row, t and the differences reduced − unreduced of every coordinate (angles wrapped to
 //! (−π, π]) and of the discrete energy L_d(q_k, q_{k+1}); `DIR/compare.png` / `.svg` draw them, the
-//! middle panel being the paper's bottom panel of its energy figure (§7.2). The two flows agree to
-//! round-off, so the differences measure the round-off of both; the wall times show what the
-//! reduction costs or saves.
+//! middle panel being the paper's bottom panel of its energy figure (§7.2). Its numbers are written as
+//! `trajectory.csv` writes them ([`output::number`]: the shortest text that reads back as the same
+//! f64, at most 24 characters). The two flows agree to round-off, so the differences measure the
+//! round-off of both; the wall times show what the reduction costs or saves.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -144,7 +145,7 @@ fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, To
             ));
         }
         fields.clear();
-        fields.push(r.t.to_string());
+        fields.push(output::number(r.t));
         for (i, c) in coordinates.iter().enumerate() {
             let mut d = r.q[i] - u.q[i];
             // Wrapping only what exceeds π keeps tiny differences exact (wrap(−1e−18) rounds to 0).
@@ -153,7 +154,7 @@ fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, To
             }
             max_q[i] = max_q[i].max(d.abs());
             dq[i].push(r.t, Some(d));
-            fields.push(d.to_string());
+            fields.push(output::number(d));
         }
         let d = r.discrete_energy.zip(u.discrete_energy).map(|(x, y)| x - y);
         if let Some(d) = d {
@@ -162,7 +163,7 @@ fn differences(dir: &Path, coordinates: &[Coordinate]) -> Result<Differences, To
         ld_reduced.push(r.t, r.discrete_energy);
         ld_unreduced.push(r.t, u.discrete_energy);
         d_ld.push(r.t, d);
-        fields.push(d.map_or(String::new(), |d| d.to_string()));
+        fields.push(d.map_or(String::new(), output::number));
         writer.write_record(&fields).map_err(|e| ToolError::write(&table, e))?;
     }
     writer.flush().map_err(|source| ToolError::Write { path: table.clone(), source })?;

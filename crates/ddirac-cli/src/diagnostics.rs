@@ -113,10 +113,12 @@ pub fn exit_code(report: &miette::Report) -> u8 {
 /// Everything the command line reports as a failure.
 #[derive(Debug, thiserror::Error, Diagnostic)]
 pub enum CliError {
-    /// The spec file cannot be read.
-    #[error("cannot read the spec file `{}`", path.display())]
+    /// A file cannot be read.
+    #[error("cannot read {what} `{}`", path.display())]
     #[diagnostic(code(ddirac::read))]
     Read {
+        /// What the file is: `the spec file`, `the members file`, ….
+        what: &'static str,
         /// The file.
         path: PathBuf,
         /// Why.

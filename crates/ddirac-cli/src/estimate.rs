@@ -114,7 +114,9 @@ pub fn check(
         )
         .collect();
         let thin = (total as f64 / (free as f64 / 2.0)).max(1.0);
-        let every = 10f64.powf(thin.log10().ceil()) as u64 * plan.output.every.max(1) as u64;
+        // At most i64::MAX, the largest value `output.every` takes.
+        let every = (10f64.powf(thin.log10().ceil()) as u64).saturating_mul(plan.output.every.max(1) as u64);
+        let every = every.min(i64::MAX as u64);
         return Err(source
             .error_with(
                 format!(

@@ -245,8 +245,14 @@ fn parse_shard(text: &str) -> Result<(usize, usize), String> {
     let (i, n) = text.split_once('/').ok_or("write the shard as I/N, e.g. 0/16")?;
     let i: usize = i.trim().parse().map_err(|_| format!("`{i}` is not a shard index"))?;
     let n: usize = n.trim().parse().map_err(|_| format!("`{n}` is not a number of shards"))?;
-    if n == 0 || i >= n {
-        return Err(format!("the shard index must be in 0..{n} (it counts from 0, as SLURM_ARRAY_TASK_ID)"));
+    if n == 0 {
+        return Err("the number of shards N must be at least 1".into());
+    }
+    if i >= n {
+        return Err(format!(
+            "the shard index {i} must be in 0..{n}, below the number of shards (it counts from 0, as \
+             SLURM_ARRAY_TASK_ID)"
+        ));
     }
     Ok((i, n))
 }

@@ -15,7 +15,7 @@
 //! the file stays under the control of the caller's staging (temporary name, rename on success).
 
 use std::fs::File;
-use std::io::{self, BufWriter, Seek, SeekFrom, Write};
+use std::io::{self, BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::Path;
 
 /// Length of the magic, version, header length and header, in bytes: the smallest multiple of 64
@@ -111,16 +111,36 @@ pub struct Array {
     pub data: Vec<u8>,
 }
 
-/// Reads an array of format version 1.0 written by this module (C order).
-pub fn read(path: &Path) -> io::Result<Array> {
-    let bytes = std::fs::read(path)?;
-    let invalid = |why: &str| io::Error::new(io::ErrorKind::InvalidData, format!("not a .npy file of ddirac: {why}"));
-    if bytes.len() < 10 || &bytes[..6] != MAGIC || bytes[6] != 1 {
+/// The header of an array file: element type, shape and where the data starts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Header {
+    /// `<f8`, `<i8`, `|u1`, …
+    pub descr: String,
+    /// The shape.
+    pub shape: Vec<u64>,
+    /// The offset of the data in the file, bytes.
+    pub offset: usize,
+}
+
+/// Reads the header of an array of format version 1.0 written by this module (C order), and checks
+/// that the file holds exactly the data its shape and element type say: refuses a truncated file.
+pub fn read_header(path: &Path) -> io::Result<Header> {
+    let mut file = File::open(path)?;
+    let length = file.metadata()?.len();
+    let mut start = [0u8; 10];
+    file.read_exact(&mut start).map_err(|_| invalid("no NPY 1.0 magic"))?;
+    let mut dict = vec![0u8; usize::from(u16::from_le_bytes([start[8], start[9]]))];
+    file.read_exact(&mut dict).map_err(|_| invalid("short header"))?;
+    parse(&start, &dict, length)
+}
+
+/// The header of `start` (magic, version and header length: 10 bytes) and `dict` (the header's
+/// dict) of a file of `length` bytes.
+fn parse(start: &[u8], dict: &[u8], length: u64) -> io::Result<Header> {
+    if &start[..6] != MAGIC || start[6] != 1 {
         return Err(invalid("no NPY 1.0 magic"));
     }
-    let len = 10 + usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
-    let dict = std::str::from_utf8(bytes.get(10..len).ok_or_else(|| invalid("short header"))?)
-        .map_err(|_| invalid("header not UTF-8"))?;
+    let dict = std::str::from_utf8(dict).map_err(|_| invalid("header not UTF-8"))?;
     let field = |key: &str| dict.split(key).nth(1).ok_or_else(|| invalid(key));
     let descr = field("'descr': '")?.split('\'').next().unwrap_or_default().to_owned();
     if field("'fortran_order': ")?.starts_with("True") {
@@ -133,7 +153,44 @@ pub fn read(path: &Path) -> io::Result<Array> {
         .filter(|s| !s.is_empty())
         .map(|s| s.parse().map_err(|_| invalid("shape")))
         .collect::<io::Result<Vec<u64>>>()?;
-    Ok(Array { descr, shape, data: bytes[len..].to_vec() })
+    let item: u64 = match descr.as_bytes() {
+        [b'<' | b'|', _, _, ..] => descr.get(2..).and_then(|size| size.parse().ok()).filter(|&size| size > 0),
+        _ => None,
+    }
+    .ok_or_else(|| invalid(&format!("the element type `{descr}` is not a little-endian type of ddirac")))?;
+    let offset = 10 + dict.len();
+    let expected = shape.iter().try_fold(item, |n, &d| n.checked_mul(d));
+    let data = length.saturating_sub(offset as u64);
+    if expected != Some(data) {
+        let dims: Vec<String> = shape.iter().map(u64::to_string).collect();
+        let wanted = expected.map_or_else(|| "more than 2^64".to_owned(), |n| n.to_string());
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!(
+                "the header's shape ({}) of `{descr}` needs {wanted} bytes of data, but the file holds {data} \
+                 (is it truncated?)",
+                dims.join(", ")
+            ),
+        ));
+    }
+    Ok(Header { descr, shape, offset })
+}
+
+fn invalid(why: &str) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidData, format!("not a .npy file of ddirac: {why}"))
+}
+
+/// Reads an array of format version 1.0 written by this module (C order); refuses a file whose data
+/// is not exactly as long as the header's shape and element type say (a truncated file, say).
+pub fn read(path: &Path) -> io::Result<Array> {
+    let bytes = std::fs::read(path)?;
+    if bytes.len() < 10 {
+        return Err(invalid("no NPY 1.0 magic"));
+    }
+    let end = 10 + usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+    let dict = bytes.get(10..end).ok_or_else(|| invalid("short header"))?;
+    let Header { descr, shape, offset } = parse(&bytes[..10], dict, bytes.len() as u64)?;
+    Ok(Array { descr, shape, data: bytes[offset..].to_vec() })
 }
 
 #[cfg(test)]
@@ -164,14 +221,37 @@ mod tests {
             let header = header_nd(descr, &shape);
             assert_eq!(header.len() % 64, 0);
             assert_eq!(*header.last().unwrap(), b'\n');
-            let data: Vec<u8> = if shape[0] == u64::MAX {
-                vec![]
-            } else {
-                (0..shape.iter().product::<u64>() * 8).map(|b| b as u8).collect()
-            };
             let path = dir.join("a.npy");
+            if shape[0] == u64::MAX {
+                // A header can name more data than any file holds: reading it is refused.
+                write(&path, descr, &shape, &[]).unwrap();
+                assert!(read(&path).is_err());
+                continue;
+            }
+            let data: Vec<u8> = (0..shape.iter().product::<u64>() * 8).map(|b| b as u8).collect();
             write(&path, descr, &shape, &data).unwrap();
             assert_eq!(read(&path).unwrap(), Array { descr: descr.into(), shape, data });
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn data_shorter_or_longer_than_the_shape_says_is_refused() {
+        let dir = std::env::temp_dir().join(format!("ddirac-npy-length-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("a.npy");
+        for (descr, size) in [("<f8", 8), ("|u1", 1), ("<i8", 8)] {
+            let whole = vec![7u8; 6 * size];
+            write(&path, descr, &[2, 3], &whole).unwrap();
+            assert_eq!(read(&path).unwrap().data, whole);
+            assert_eq!(read_header(&path).unwrap().shape, [2, 3]);
+            for len in [0, 6 * size - 1, 6 * size + 1] {
+                write(&path, descr, &[2, 3], &vec![7u8; len]).unwrap();
+                let error = read(&path).unwrap_err();
+                assert_eq!(error.kind(), io::ErrorKind::InvalidData, "{descr}, {len} bytes");
+                assert!(error.to_string().contains(&format!("needs {} bytes", 6 * size)), "{error}");
+                assert_eq!(read_header(&path).unwrap_err().to_string(), error.to_string());
+            }
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

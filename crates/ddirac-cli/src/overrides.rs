@@ -85,6 +85,19 @@ fn misspelt(key: &str, text: &str) -> Option<String> {
     if lower == "true" || lower == "false" {
         return Some(format!("`{text}` is not a TOML value; booleans are `true`/`false` (lower case); {quote}"));
     }
+    let digits = text.strip_prefix(['+', '-']).unwrap_or(text);
+    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit() || b == b'_') {
+        // An integer that TOML does not take: out of its range, or with leading zeros or stray `_`.
+        let plain: String = text.chars().filter(|&c| c != '_').collect();
+        return Some(match plain.parse::<i64>() {
+            Ok(n) => format!("`{text}` is not a TOML value; write the integer as `{n}`; {quote}"),
+            Err(_) => format!(
+                "`{text}` is not a TOML value: TOML integers lie in {}..={}; write an integer in that range",
+                i64::MIN,
+                i64::MAX
+            ),
+        });
+    }
     let number: f64 = text.parse().ok()?;
     let toml = if number.is_nan() {
         "nan".to_owned()
@@ -93,7 +106,15 @@ fn misspelt(key: &str, text: &str) -> Option<String> {
     } else {
         format!("{number:?}")
     };
-    Some(format!("`{text}` is not a TOML value; write the number as `{toml}`; {quote}"))
+    let integer = integral(number).map_or(String::new(), |n| format!(" (`{n}` where the key takes an integer)"));
+    Some(format!("`{text}` is not a TOML value; write the number as `{toml}`{integer}; {quote}"))
+}
+
+/// `v` as an i64, if it is one exactly.
+pub fn integral(v: f64) -> Option<i64> {
+    // 2⁶³ is the first f64 above i64::MAX; −2⁶³ is i64::MIN.
+    let bound = 2f64.powi(63);
+    (v.fract() == 0.0 && (-bound..bound).contains(&v)).then_some(v as i64)
 }
 
 #[cfg(test)]

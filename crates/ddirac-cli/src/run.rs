@@ -61,7 +61,11 @@ pub struct Loaded {
 
 /// Reads the spec at `path`, applies `set` and validates it.
 pub fn load(path: &Path, set: &[String]) -> Result<Loaded, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.to_owned(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
+        what: "the spec file",
+        path: path.to_owned(),
+        source,
+    })?;
     load_text(path, text, set)
 }
 

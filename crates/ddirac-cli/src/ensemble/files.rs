@@ -129,10 +129,14 @@ pub fn command(options: &Options) -> Result<(), CliError> {
     let (range, shard) = match options.shard {
         Some((index, count)) => {
             if count == 0 || index >= count {
-                return Err(CliError::Set {
-                    arg: format!("--shard {index}/{count}"),
-                    why: "give I/N with 0 ≤ I < N (I counts from 0, as SLURM_ARRAY_TASK_ID)".into(),
-                });
+                let why = match count {
+                    0 => "the number of shards N must be at least 1".into(),
+                    _ => format!(
+                        "the shard index {index} must be in 0..{count}, below the number of shards (it counts from \
+                         0, as SLURM_ARRAY_TASK_ID)"
+                    ),
+                };
+                return Err(CliError::Set { arg: format!("--shard {index}/{count}"), why });
             }
             let range = super::shard(total, index, count);
             (range.clone(), Some(ShardJson { index, count, first: range.start, end: range.end }))
@@ -385,50 +389,293 @@ impl Trajectories {
     }
 }
 
+/// The arrays of an ensemble directory of `members` members with `n` coordinates and `rows` rows per
+/// member (0 without trajectories): file name, element type and shape, as [`write_results`] and
+/// [`Trajectories`] write them.
+fn arrays(members: usize, n: usize, rows: usize) -> Vec<(String, &'static str, Vec<u64>)> {
+    let (m, n, r) = (members as u64, n as u64, rows as u64);
+    let mut arrays: Vec<(String, &'static str, Vec<u64>)> = vec![
+        ("final_q.npy".into(), "<f8", vec![m, n]),
+        ("final_p.npy".into(), "<f8", vec![m, n]),
+        ("status.npy".into(), "|u1", vec![m]),
+        ("steps.npy".into(), "<i8", vec![m]),
+    ];
+    arrays.extend(DIAGNOSTICS.iter().map(|(name, _)| (format!("{name}.npy"), "<f8", vec![m])));
+    if rows > 0 {
+        arrays.push(("t.npy".into(), "<f8", vec![r]));
+        arrays.push(("q.npy".into(), "<f8", vec![m, r, n]));
+        arrays.push(("p.npy".into(), "<f8", vec![m, r, n]));
+        arrays.push(("energy.npy".into(), "<f8", vec![m, r]));
+    }
+    arrays.sort();
+    arrays
+}
+
+/// A refusal of `ddirac merge`.
+fn refuse(why: String) -> CliError {
+    CliError::Merge(why)
+}
+
+/// `(a, b, c)` of a shape.
+fn shape_text(shape: &[u64]) -> String {
+    let dims: Vec<String> = shape.iter().map(u64::to_string).collect();
+    format!("({})", dims.join(", "))
+}
+
+/// Checks the summary of the shard in `dir` against itself and against `reference`, the summary of
+/// the directory `reference_dir`.
+fn check_summary(dir: &Path, s: &SummaryJson, reference_dir: &Path, reference: &SummaryJson) -> Result<(), CliError> {
+    let path = dir.join("summary.json");
+    if s.ddirac_version != reference.ddirac_version {
+        return Err(refuse(format!(
+            "`{}` was written by ddirac {}, but `{}` by ddirac {}: merge shards run by one version",
+            path.display(),
+            s.ddirac_version,
+            reference_dir.join("summary.json").display(),
+            reference.ddirac_version
+        )));
+    }
+    let differs: Vec<&str> = [
+        ("the fingerprint of spec, --set and members", s.fingerprint != reference.fingerprint),
+        ("the number of members", s.members != reference.members),
+        ("the coordinates", s.coordinates != reference.coordinates),
+        ("the varied keys", s.keys != reference.keys),
+        ("the steps", s.steps != reference.steps || s.step.to_bits() != reference.step.to_bits()),
+        ("the rows per member", s.rows != reference.rows),
+    ]
+    .into_iter()
+    .filter_map(|(what, differs)| differs.then_some(what))
+    .collect();
+    if !differs.is_empty() {
+        return Err(refuse(format!(
+            "`{}` holds another ensemble than `{}` (another spec, --set or members): {} differ",
+            dir.display(),
+            reference_dir.display(),
+            differs.join(", ")
+        )));
+    }
+    let Some(shard) = s.shard else {
+        return Err(refuse(format!("`{}` holds a whole ensemble, not a shard", dir.display())));
+    };
+    let inconsistent = |why: String| refuse(format!("`{}` is inconsistent: {why}", path.display()));
+    if shard.count == 0 || shard.index >= shard.count {
+        return Err(inconsistent(format!("shard {}/{} does not exist", shard.index, shard.count)));
+    }
+    let range = super::shard(s.members, shard.index, shard.count);
+    if (shard.first, shard.end) != (range.start, range.end) {
+        return Err(inconsistent(format!(
+            "shard {}/{} of {} members holds members {}..{}, not {}..{}",
+            shard.index, shard.count, s.members, range.start, range.end, shard.first, shard.end
+        )));
+    }
+    if s.finished + s.failed != range.len() || s.failures.len() != s.failed {
+        return Err(inconsistent(format!(
+            "{} finished and {} failed members ({} failures listed) in a shard of {}",
+            s.finished,
+            s.failed,
+            s.failures.len(),
+            range.len()
+        )));
+    }
+    Ok(())
+}
+
+/// Checks `dir/name` (`final.csv` or `members.csv`) of a shard: the header `header`, then one row per
+/// member of `shard` in order, each with a field per column, a status (`final.csv`) and numbers;
+/// returns the text and how many members have the status `ok`.
+fn check_table(dir: &Path, name: &str, header: &str, shard: ShardJson) -> Result<(String, usize), CliError> {
+    let path = dir.join(name);
+    let text =
+        std::fs::read_to_string(&path).map_err(|source| CliError::Read { what: "the shard file", path, source })?;
+    let path = dir.join(name);
+    let bad = |why: String| refuse(format!("`{}` {why}", path.display()));
+    let mut lines = text.lines();
+    let found = lines.next().unwrap_or_default();
+    if found != header {
+        return Err(bad(format!("starts with `{found}`, not with the header `{header}` of this ensemble")));
+    }
+    let columns = header.split(',').count();
+    let status = name == "final.csv";
+    let mut count = 0;
+    let mut ok = 0;
+    for (k, line) in lines.enumerate() {
+        let member = shard.first + k;
+        let line_number = k + 2;
+        if member >= shard.end {
+            return Err(bad(format!(
+                "has more than the {} rows of the shard's members {}..{} (line {line_number})",
+                shard.end - shard.first,
+                shard.first,
+                shard.end
+            )));
+        }
+        let fields: Vec<&str> = line.split(',').collect();
+        if fields.len() != columns {
+            return Err(bad(format!("has {} fields on line {line_number}, not {columns}", fields.len())));
+        }
+        if fields[0] != member.to_string() {
+            return Err(bad(format!(
+                "has member `{}` on line {line_number}, where member {member} belongs",
+                fields[0]
+            )));
+        }
+        let numbers = if status {
+            match fields[1] {
+                "ok" => ok += 1,
+                "failed" => {}
+                other => return Err(bad(format!("has the status `{other}` on line {line_number}, not ok or failed"))),
+            }
+            &fields[2..]
+        } else {
+            &fields[1..]
+        };
+        if let Some(field) = numbers.iter().find(|f| f.parse::<f64>().is_err()) {
+            return Err(bad(format!("has `{field}` on line {line_number}, which is not a number")));
+        }
+        count += 1;
+    }
+    let expected = shard.end - shard.first;
+    if count != expected {
+        return Err(bad(format!(
+            "has {count} rows, but the shard holds {expected} members ({}..{})",
+            shard.first, shard.end
+        )));
+    }
+    Ok((text, ok))
+}
+
+/// Checks the shard in `dir` completely against its summary `s`: `final.csv` and `members.csv` row by
+/// row, and every array of the ensemble present with the type and shape its members and the run's
+/// rows imply and with all its data (no other arrays).
+fn check_files(dir: &Path, s: &SummaryJson) -> Result<(), CliError> {
+    let shard = s.shard.expect("checked by check_summary");
+    let coordinates = &s.coordinates;
+    let mut header = String::from("member,status");
+    for c in coordinates {
+        header.push_str(&format!(",{c}"));
+    }
+    for c in coordinates {
+        header.push_str(&format!(",p_{c}"));
+    }
+    let (_, ok) = check_table(dir, "final.csv", &header, shard)?;
+    if ok != s.finished {
+        return Err(refuse(format!(
+            "`{}` has {ok} members with the status ok, but `{}` counts {} finished",
+            dir.join("final.csv").display(),
+            dir.join("summary.json").display(),
+            s.finished
+        )));
+    }
+    let header: String =
+        std::iter::once("member").chain(s.keys.iter().map(String::as_str)).collect::<Vec<_>>().join(",");
+    check_table(dir, "members.csv", &header, shard)?;
+
+    let npy_dir = dir.join("npy");
+    let expected = arrays(shard.end - shard.first, coordinates.len(), s.rows);
+    let mut present: Vec<String> = std::fs::read_dir(&npy_dir)
+        .map_err(|source| CliError::Read { what: "the shard directory", path: npy_dir.clone(), source })?
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".npy"))
+        .collect();
+    present.sort();
+    if let Some((missing, _, _)) = expected.iter().find(|(name, _, _)| !present.contains(name)) {
+        return Err(refuse(format!(
+            "`{}` is missing: every shard of this ensemble has the arrays {}",
+            npy_dir.join(missing).display(),
+            expected.iter().map(|(name, _, _)| name.as_str()).collect::<Vec<_>>().join(", ")
+        )));
+    }
+    if let Some(extra) = present.iter().find(|name| !expected.iter().any(|(e, _, _)| e == *name)) {
+        return Err(refuse(format!(
+            "`{}` is not an array of an ensemble (remove it if it was put there by hand)",
+            npy_dir.join(extra).display()
+        )));
+    }
+    for (name, descr, shape) in &expected {
+        let path = npy_dir.join(name);
+        let found = npy::read_header(&path).map_err(|e| refuse(format!("`{}` is damaged: {e}", path.display())))?;
+        if found.descr != *descr || found.shape != *shape {
+            return Err(refuse(format!(
+                "`{}` holds `{}` of shape {}, but the shard's {} members ({} coordinates, {} rows each) make it \
+                 `{descr}` of shape {}",
+                path.display(),
+                found.descr,
+                shape_text(&found.shape),
+                shard.end - shard.first,
+                coordinates.len(),
+                s.rows,
+                shape_text(shape)
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Runs `ddirac merge`: joins the directories of the shards of one ensemble into `out`.
+///
+/// Every shard is checked completely before anything is written (see [`check_summary`] and
+/// [`check_files`]): a refusal leaves `out` as it was.
 pub fn merge(dirs: &[PathBuf], out: &Path, quiet: bool) -> Result<(), CliError> {
     let started = Instant::now();
     let read_summary = |dir: &PathBuf| -> Result<SummaryJson, CliError> {
         let path = dir.join("summary.json");
-        let text = std::fs::read_to_string(&path).map_err(|source| CliError::Read { path: path.clone(), source })?;
+        let text = std::fs::read_to_string(&path).map_err(|source| CliError::Read {
+            what: "the shard summary",
+            path: path.clone(),
+            source,
+        })?;
         serde_json::from_str(&text)
-            .map_err(|e| CliError::Merge(format!("`{}` is not the summary of an ensemble: {e}", path.display())))
+            .map_err(|e| refuse(format!("`{}` is not the summary of an ensemble: {e}", path.display())))
     };
     let mut parts: Vec<(PathBuf, SummaryJson)> =
         dirs.iter().map(|d| read_summary(d).map(|s| (d.clone(), s))).collect::<Result<_, _>>()?;
     let Some((first_dir, first)) = parts.first().cloned() else {
-        return Err(CliError::Merge("no directories given".into()));
+        return Err(refuse("no directories given".into()));
     };
     for (dir, s) in &parts {
-        if s.fingerprint != first.fingerprint || s.members != first.members {
-            return Err(CliError::Merge(format!(
-                "`{}` holds another ensemble than `{}` (another spec, --set or members)",
-                dir.display(),
-                first_dir.display()
-            )));
-        }
-        if s.shard.is_none() {
-            return Err(CliError::Merge(format!("`{}` holds a whole ensemble, not a shard", dir.display())));
-        }
+        check_summary(dir, s, &first_dir, &first)?;
     }
     parts.sort_by_key(|(_, s)| s.shard.map(|s| s.first));
     let mut next = 0;
-    for (dir, s) in &parts {
+    for (k, (dir, s)) in parts.iter().enumerate() {
         let shard = s.shard.expect("checked above");
-        if shard.first != next {
-            let why = if shard.first < next { "overlaps the shard before it" } else { "leaves a gap before it" };
-            return Err(CliError::Merge(format!(
-                "`{}` (members {}..{}) {why}: members {next}..{} are missing or given twice",
-                dir.display(),
+        if shard.first < next {
+            let (before, b) = &parts[k - 1];
+            let b = b.shard.expect("checked above");
+            let same = std::fs::canonicalize(dir).ok().is_some_and(|d| std::fs::canonicalize(before).ok() == Some(d));
+            let repeated = format!("{}..{}", shard.first, shard.end.min(b.end));
+            return Err(refuse(if same {
+                format!("`{}` is given twice (members {}..{})", dir.display(), shard.first, shard.end)
+            } else {
+                format!(
+                    "`{}` (members {}..{}) repeats members {repeated} of `{}` (members {}..{}): give each shard once",
+                    dir.display(),
+                    shard.first,
+                    shard.end,
+                    before.display(),
+                    b.first,
+                    b.end
+                )
+            }));
+        }
+        if shard.first > next {
+            return Err(refuse(format!(
+                "members {next}..{} of {} are in none of the directories (the shard before `{}` is missing)",
                 shard.first,
-                shard.end,
-                shard.first
+                s.members,
+                dir.display()
             )));
         }
         next = shard.end;
     }
     if next != first.members {
-        return Err(CliError::Merge(format!("members {next}..{} are in none of the directories", first.members)));
+        return Err(refuse(format!(
+            "members {next}..{} of {} are in none of the directories (the last shards are missing)",
+            first.members, first.members
+        )));
+    }
+    for (dir, s) in &parts {
+        check_files(dir, s)?;
     }
 
     let run_dir = RunDir::open(out, &lock::command_line())?;
@@ -440,35 +687,34 @@ pub fn merge(dirs: &[PathBuf], out: &Path, quiet: bool) -> Result<(), CliError> 
         let mut text = String::new();
         for (i, (dir, _)) in parts.iter().enumerate() {
             let path = dir.join(name);
-            let part = std::fs::read_to_string(&path).map_err(|source| CliError::Read { path, source })?;
+            let part = std::fs::read_to_string(&path).map_err(|source| CliError::Read {
+                what: "the shard file",
+                path,
+                source,
+            })?;
             let body = if i == 0 { part.as_str() } else { part.split_once('\n').map_or("", |(_, b)| b) };
             text.push_str(body);
         }
         files.push(write_text(&staging, name, &text)?);
     }
-    let mut names: Vec<String> = std::fs::read_dir(first_dir.join("npy"))
-        .map_err(|source| CliError::Read { path: first_dir.join("npy"), source })?
-        .filter_map(|e| e.ok()?.file_name().into_string().ok())
-        .filter(|n| n.ends_with(".npy"))
-        .collect();
-    names.sort();
-    for name in names {
+    for (name, _, _) in arrays(first.members, first.coordinates.len(), first.rows) {
         let arrays: Vec<npy::Array> = parts
             .iter()
             .map(|(dir, _)| {
                 let path = dir.join("npy").join(&name);
-                npy::read(&path).map_err(|source| CliError::Read { path, source })
+                npy::read(&path).map_err(|source| CliError::Read { what: "the shard array", path, source })
             })
             .collect::<Result<_, _>>()?;
         let (descr, shape, data) = if name == "t.npy" {
-            if arrays.iter().any(|a| *a != arrays[0]) {
-                return Err(CliError::Merge("the shards' time grids `npy/t.npy` differ".into()));
+            if let Some(k) = arrays.iter().position(|a| *a != arrays[0]) {
+                return Err(refuse(format!(
+                    "the time grids `{}` and `{}` differ",
+                    parts[0].0.join("npy/t.npy").display(),
+                    parts[k].0.join("npy/t.npy").display()
+                )));
             }
             (arrays[0].descr.clone(), arrays[0].shape.clone(), arrays[0].data.clone())
         } else {
-            if arrays.iter().any(|a| a.descr != arrays[0].descr || a.shape.get(1..) != arrays[0].shape.get(1..)) {
-                return Err(CliError::Merge(format!("the shards' `npy/{name}` differ in type or shape")));
-            }
             let mut shape = arrays[0].shape.clone();
             shape[0] = arrays.iter().map(|a| a.shape[0]).sum();
             (arrays[0].descr.clone(), shape, arrays.into_iter().flat_map(|a| a.data).collect())

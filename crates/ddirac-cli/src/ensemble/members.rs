@@ -144,7 +144,9 @@ impl Members {
             csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_path(path).map_err(|e| match e
                 .into_kind()
             {
-                csv::ErrorKind::Io(source) => CliError::Read { path: path.to_owned(), source },
+                csv::ErrorKind::Io(source) => {
+                    CliError::Read { what: "the members file", path: path.to_owned(), source }
+                }
                 other => invalid(format!("{other:?}")),
             })?;
         let header: Vec<String> =

@@ -181,7 +181,11 @@ impl Results {
 impl Ensemble {
     /// Reads the spec at `path`, applies `set`, and reads or generates the members.
     pub fn load(path: &Path, set: &[String], from: MembersFrom) -> Result<Self, CliError> {
-        let text = std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.to_owned(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
+            what: "the spec file",
+            path: path.to_owned(),
+            source,
+        })?;
         Self::from_text(path, text, set, from)
     }
 

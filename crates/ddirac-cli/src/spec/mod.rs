@@ -334,9 +334,29 @@ pub fn parse(source: &SpecSource) -> Result<Spec, Box<SpecError>> {
         let error = source.error(e.span(), format!("invalid spec: {message}"), label);
         if message.starts_with("unknown field") {
             error.with_help("remove the key or fix its spelling; the accepted keys are listed above")
+        } else if let Some(help) = integer_help(&message) {
+            error.with_help(help)
         } else {
             error
         }
+    })
+}
+
+/// The help for a float where the key takes an integer (`invalid type: floating point `1000.0`,
+/// expected i64`): the integer it equals, if it is one TOML takes, else the range of TOML integers.
+fn integer_help(message: &str) -> Option<String> {
+    let value = message.strip_prefix("invalid type: floating point `")?.split('`').next()?;
+    if !message.ends_with("expected i64") {
+        return None;
+    }
+    let value: f64 = value.parse().ok()?;
+    Some(match crate::overrides::integral(value) {
+        Some(n) => format!("this key takes an integer: write `{n}`, without a decimal point or exponent"),
+        None => format!(
+            "this key takes an integer, in {}..={}: write one without a decimal point or exponent",
+            i64::MIN,
+            i64::MAX
+        ),
     })
 }
 

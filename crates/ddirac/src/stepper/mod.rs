@@ -184,6 +184,30 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         };
         let rank = equipped!(&schemes, st => st.first_step_rank(&first));
         if rank < dim.n() {
+            // The reduced unknowns are sheared by K (g1 − g0 = γ + K (x1 − x0)), which multiplies the
+            // condition of the Jacobian by about |K|⁴: when K = 0 determines the motion, K is the cause.
+            let k = &setup.connection;
+            if method.reduced && !k.is_zero() {
+                let flat = Connection::zero(k.n_x(), k.n_g());
+                let scheme = |step| -> Result<_, Error> {
+                    let reduction = ReducedLagrangian::new(system.clone(), method.rule, step, flat.clone())?;
+                    Ok(LagrangePoincareDirac::new(dim, reduction, method.variant))
+                };
+                let stages = Stages::new(method, h, steps, &first, scheme);
+                if stages.is_ok_and(|(stages, _)| stages.first_step_rank(&first) == dim.n()) {
+                    let largest = k.matrix().amax();
+                    return Err(Error::Invalid {
+                        what: Input::Connection,
+                        why: format!(
+                            "with this K (largest entry {largest:e}) the reduced step equations are singular in \
+                             floating point: their Jacobian has rank {rank} of {} at the first step, full rank with \
+                             K = 0, and its condition grows as |K|⁴; reduce with a K of smaller entries or run the \
+                             unreduced equations (`reduced = false`)",
+                            dim.n()
+                        ),
+                    });
+                }
+            }
             return Err(Error::Undetermined { rank, coordinates: dim.n() });
         }
         let fresh_kept = match derivative_path {
