@@ -30,7 +30,7 @@ from .convergence import convergence
 from .ensembles import EnsembleResult, ensemble
 from .run import Run, check, simulate
 from .run_warnings import (
-    ChartNotInverseWarning, EnergyDriftWarning, EnergyJumpWarning, InvarianceUndecidedWarning, LooseToleranceWarning,
+    EnergyDriftWarning, EnergyJumpWarning, InvarianceUndecidedWarning, LooseToleranceWarning,
     NewtonFallbackWarning, NotInvariantWarning, RunWarning, SingularChartWarning, SubdividedWarning,
     UnderResolvedWarning,
 )
@@ -39,7 +39,7 @@ from .spec import Spec, load
 __all__ = [
     "ConvergenceError", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError",
     "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
-    "RunWarning", "ChartNotInverseWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
+    "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
     "LooseToleranceWarning", "NewtonFallbackWarning", "NotInvariantWarning", "SingularChartWarning",
     "SubdividedWarning", "UnderResolvedWarning",
 ]

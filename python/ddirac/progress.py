@@ -52,7 +52,7 @@ class Bar:
 
 def callback(progress, steps, unit="step"):
     """The engine's callback ``f(k)`` and a closer for the ``progress`` argument, or (None, None);
-    ``steps`` counts ``unit``\ s (steps of a run, members of an ensemble)."""
+    ``steps`` counts ``unit`` items (steps of a run, members of an ensemble)."""
     if progress is None:
         progress = in_notebook()
     if progress is False:

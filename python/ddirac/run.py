@@ -140,8 +140,11 @@ def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, ru
           reduced=False, **method):
     """Tests the hypotheses a run of :func:`simulate` with the same arguments would rest on, without
     integrating: the invariance of L_d under each group translation (reduced runs), the
-    2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map and the
-    primary constraint. Returns the findings as a dict, with ``verdict``: whether such a run would
+    2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map, the
+    primary constraint and, with an atlas, each chart (``charts``: its ``name``, whether its maps are
+    ``inverse`` on the ``points`` sampled over its domain, the largest ``round_trip`` and where,
+    ``worst``, a point ``singular_where_good``, and its ``invariance`` and ``periodicity``). Returns
+    the findings as a dict, with ``verdict``: whether such a run would
     go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with (each
     ``{kind, step, t, message, count}``, as in a run's summary; they are also emitted as
     :class:`ddirac.RunWarning` subclasses)."""

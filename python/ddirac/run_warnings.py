@@ -80,11 +80,9 @@ class SubdividedWarning(RunWarning):
 
 
 class LooseToleranceWarning(RunWarning):
-    """``loose_tolerance``: a tolerance of the run is looser than its results need."""
+    """``loose_tolerance``: the Newton tolerance lets each step err by more than the step's own
+    truncation error; the result may be no more accurate than the tolerance allows."""
 
-
-class ChartNotInverseWarning(RunWarning):
-    """``chart_not_inverse``: a chart of the system's atlas and its given inverse do not invert each other."""
 
 
 #: The class of each kind, by the name ``summary.json`` gives it.
@@ -98,7 +96,6 @@ KINDS: dict[str, type[RunWarning]] = {
     "energy_drift": EnergyDriftWarning,
     "subdivided": SubdividedWarning,
     "loose_tolerance": LooseToleranceWarning,
-    "chart_not_inverse": ChartNotInverseWarning,
 }
 
 # The package's directory: frames of files in it are skipped, so that a warning points at the user's call.

@@ -1,7 +1,8 @@
 //! `ddirac check SPEC`: everything a run checks before its first step, without integrating — the
 //! spec (parse, validation, the Lagrangian's expressions), the invariance of L_d under each group
 //! translation (the hypothesis of reduction, paper §4), the connection axioms (Definition 2.1), the
-//! regularity of the Legendre transform and whether p0 lies on the primary constraint p = ∂L/∂v.
+//! regularity of the Legendre transform and whether p0 lies on the primary constraint p = ∂L/∂v, and
+//! for an atlas each chart's maps, Legendre map, group coordinates and angles.
 //!
 //! The report goes to stdout. The verdict is the library's ([`ddirac::CheckReport::verdict`]), the
 //! one a run applies before its first step: the exit status is 0 exactly when a run of the spec's
@@ -57,6 +58,41 @@ fn finding_line(heading: &str, f: &Finding, tolerance: f64, holds: &str, fails: 
         "  {heading:<16}  {}: deviation {:.2e} (tolerance {tolerance:.0e}, {} samples): {verdict}",
         f.coordinate, f.deviation, f.samples
     )
+}
+
+/// The lines of the atlas's charts: each chart's maps there and back, the Legendre map where its
+/// quality is high, its group coordinates and angles.
+fn chart_lines(report: &CheckReport, m: &ddirac::Method) -> Vec<String> {
+    let mut lines = vec![];
+    let used = if m.atlas { "" } else { " (not used: `method.atlas = false`)" };
+    for (i, c) in report.charts.iter().enumerate() {
+        let heading = if i == 0 { "charts" } else { "" };
+        let maps = if c.points == 0 {
+            "UNTESTED: no sampled point falls where its quality is positive".to_owned()
+        } else if c.inverse() {
+            format!("maps inverse on {} sampled points (largest round trip {:.1e})", c.points, c.round_trip)
+        } else {
+            format!(
+                "maps NOT inverse: a round trip lands {:.2e} (relative) away, at ({}); tolerance {:.0e}",
+                c.round_trip,
+                c.worst.iter().map(|x| format!("{x:.4}")).collect::<Vec<_>>().join(", "),
+                ddirac::ROUND_TRIP_TOLERANCE
+            )
+        };
+        lines.push(format!("  {heading:<16}  `{}`{used}: {maps}", c.name));
+        if let Some((at, quality)) = &c.singular_where_good {
+            let at = at.iter().map(|x| format!("{x:.4}")).collect::<Vec<_>>().join(", ");
+            lines.push(format!("  {:<16}    quality {quality:.3} at ({at}), where its Legendre map is SINGULAR", ""));
+        }
+        let not_invariant = if m.reduced { "NOT invariant" } else { "NOT invariant (unreduced: not needed)" };
+        for f in &c.invariance {
+            lines.push(finding_line("", f, report.invariance_tolerance, "invariant", not_invariant));
+        }
+        for f in &c.periodicity {
+            lines.push(finding_line("", f, report.periodicity_tolerance, "2π-periodic", "NOT 2π-periodic"));
+        }
+    }
+    lines
 }
 
 /// The report printed on stdout.
@@ -116,6 +152,7 @@ fn text(plan: &Plan, report: &CheckReport, verdict: &Result<Vec<ddirac::Warning>
         ),
     };
     lines.push(format!("  initial momentum  {momentum}"));
+    lines.extend(chart_lines(report, m));
     let equations = if m.reduced { "reduced equations" } else { "unreduced equations" };
     let verdict = match verdict {
         Err(_) => "a run would be refused".to_owned(),

@@ -222,6 +222,7 @@ fn library_error(source: &SpecSource, plan: &spec::Plan, dir: &Path, error: ddir
             | E::OffPrimaryConstraint { .. }
             | E::Undetermined { .. }
             | E::NoSymmetry
+            | E::Chart { .. }
             | E::NotCompiled(_)
     );
     match (plan.spans.diagnostic(source, &error), numerical) {

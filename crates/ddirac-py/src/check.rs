@@ -1,6 +1,7 @@
 //! `ddirac.check`: the hypotheses of a run tested without integrating, as data, and the verdict a run
 //! would give (paper §4: invariance; §6: periodicity of angles; the Legendre map and the primary
-//! constraint of a degenerate Lagrangian).
+//! constraint of a degenerate Lagrangian; with an atlas, each chart's maps, Legendre map, group
+//! coordinates and angles).
 
 use ddirac::{CheckReport, Finding};
 use pyo3::prelude::*;
@@ -46,6 +47,20 @@ pub fn check<'py>(py: Python<'py>, system: &SystemHandle, run_args: RunArgs) -> 
     d.set_item("regular", report.regular())?;
     d.set_item("constraint_mismatch", report.constraint_mismatch)?;
     d.set_item("momentum_consistent", report.momentum_consistent())?;
+    let charts = PyList::empty(py);
+    for c in &report.charts {
+        let chart = PyDict::new(py);
+        chart.set_item("name", &c.name)?;
+        chart.set_item("points", c.points)?;
+        chart.set_item("round_trip", c.round_trip)?;
+        chart.set_item("inverse", c.inverse())?;
+        chart.set_item("worst", c.worst.clone())?;
+        chart.set_item("singular_where_good", c.singular_where_good.as_ref().map(|(at, _)| at.clone()))?;
+        chart.set_item("invariance", findings(py, &c.invariance, report.invariance_tolerance)?)?;
+        chart.set_item("periodicity", findings(py, &c.periodicity, report.periodicity_tolerance)?)?;
+        charts.append(chart)?;
+    }
+    d.set_item("charts", charts)?;
     let verdict = PyDict::new(py);
     match report.verdict(&method) {
         Ok(warnings) => {

@@ -123,6 +123,19 @@ pub fn nearest_turns<A: AsMut<[f64]>>(mut q: A, near: &impl AsRef<[f64]>, kinds:
     q
 }
 
+/// |a − b|∞ / (1 + |a|∞), infinite where an entry of either is not finite: how far a round trip
+/// through a chart's maps lands from the point `a` it started from.
+///
+/// ```
+/// assert_eq!(ddirac::atlas::round_trip_distance(&[1.0, -3.0], &[1.0, -3.002]), 0.002 / 4.0);
+/// assert_eq!(ddirac::atlas::round_trip_distance(&[1.0], &[f64::NAN]), f64::INFINITY);
+/// ```
+pub fn round_trip_distance(a: &[f64], b: &[f64]) -> f64 {
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    a.iter().zip(b).fold(0.0f64, |m, (a, b)| if (a - b).is_finite() { m.max((a - b).abs()) } else { f64::INFINITY })
+        / scale
+}
+
 /// A point of chart `chart` in the main chart (the identity for chart 0).
 fn to_main<S: SystemIn<Dm>, Dm: Dim, D: Scalar>(system: &S, chart: usize, q: &Dm::Array<D>) -> Dm::Array<D> {
     if chart == 0 {

@@ -152,12 +152,15 @@ pub enum WarningKind {
     EnergyJump,
     /// The closed-form step failed its residual test and the step was solved by Newton's method.
     NewtonFallback,
-    /// An angle advanced by more than [`crate::MAX_ANGLE_STEP`] in one step, where the Legendre map is
-    /// not near-singular: the step does not resolve the motion.
+    /// An angle's advance in one step was not resolved — more than [`crate::MAX_ANGLE_STEP`], or a
+    /// kick of more than [`crate::KICK`] times its typical advance with its rate changing by more than
+    /// half within the step — where the Legendre map is not near-singular: the step does not resolve
+    /// the motion.
     UnderResolved,
-    /// An angle advanced by more than [`crate::MAX_ANGLE_STEP`] in one step where the Legendre map
-    /// ∂²L/∂v² has become near-singular: the coordinates are singular there (a pole of spherical
-    /// coordinates), and the trajectory near it cannot be trusted.
+    /// An angle's advance in one step was not resolved (as for [`WarningKind::UnderResolved`]) where
+    /// the Legendre map ∂²L/∂v² has become near-singular, or a step needed sub-steps there: the
+    /// coordinates are singular there (a pole of spherical coordinates), and the trajectory near it
+    /// cannot be trusted.
     SingularChart,
     /// The energy moved away from its initial value by more than [`crate::ENERGY_DRIFT`] of its scale:
     /// far more than the bounded error of a step that resolves the motion.
@@ -166,11 +169,17 @@ pub enum WarningKind {
     /// (up to [`crate::MAX_SUBDIVISION`]): the run went on, with the same structure, through motion
     /// the step size does not resolve there.
     Subdivided,
+    /// The Newton tolerance allows each step an error larger than the step's own truncation error,
+    /// estimated from how much the increments change from step to step
+    /// ([`crate::LOOSE_TOLERANCE_MARGIN`]): the result may be no more accurate than the tolerance,
+    /// whatever the order of the method.
+    LooseTolerance,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
-    /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`, `subdivided`.
+    /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`, `subdivided`,
+    /// `loose_tolerance`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
@@ -181,6 +190,7 @@ impl WarningKind {
             WarningKind::SingularChart => "singular_chart",
             WarningKind::EnergyDrift => "energy_drift",
             WarningKind::Subdivided => "subdivided",
+            WarningKind::LooseTolerance => "loose_tolerance",
         }
     }
 }

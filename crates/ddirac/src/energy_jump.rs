@@ -23,12 +23,16 @@
 //!
 //! A slow departure has no jump: the energy of a run whose step does not resolve the motion (a
 //! gyration that speeds up as the particle enters a stronger field, say) can wander by any amount in
-//! changes each of which looks ordinary. So the watch also compares each step's energy with the first
-//! step's (every 16th ordinary step): once they differ by more than [`ENERGY_DRIFT`] of the drift
-//! scale — the larger of the first step's scale and the mean over the steps looked at of
-//! max(|E_k|, |⟨p, Δq/h⟩|), which a wandering
-//! energy cannot inflate in a few steps as it inflates the largest value seen — it reports a *drift*,
-//! once.
+//! changes each of which looks ordinary. So the watch also looks at the energy H(q_k, p_k) of the
+//! state (a function on T*Q, the same in every chart of an atlas; evaluated only at these looks, every
+//! 16th ordinary step and at most 64 times in a run) and reports a *drift*, once, when it differs from
+//! the first step's by more than [`ENERGY_DRIFT`] of the drift scale — the larger of the first step's
+//! scale and the mean over the looks of max(|E_k|, |⟨p, Δq/h⟩|), which a wandering energy cannot
+//! inflate in a few steps as it inflates the largest value seen — or, relative to what the run
+//! resolves, at two looks in a row, by more than [`DRIFT_BAND`] times the band |H_k − H_first| of the
+//! looks in the run's first eighth of steps (the bounded oscillation of a symplectic method's energy at
+//! this step) and more than [`DRIFT_FLOOR`] of the drift scale (a spike, the transient error of passing
+//! near a pole of spherical coordinates, is not a drift).
 
 /// What a run does when a step's energy jumps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -94,6 +98,14 @@ const CALM_STEPS: usize = 8;
 /// energy error bounded and small (the examples' runs stay below 2 % even through pole passages).
 pub const ENERGY_DRIFT: f64 = 0.1;
 
+/// How many times the band of the energy's departure over the first eighth of a run its departure
+/// must exceed later to count as a drift (with [`DRIFT_FLOOR`]).
+pub const DRIFT_BAND: f64 = 4.0;
+
+/// The smallest departure, relative to the drift scale, that counts as a drift measured against
+/// the band ([`DRIFT_BAND`]).
+pub const DRIFT_FLOOR: f64 = 1e-2;
+
 /// The drift is looked at every this many ordinary steps (a drift builds up over many steps; a
 /// look at every step showed as 4 % of the charged particle's closed-form step).
 const DRIFT_EVERY: usize = 16;
@@ -110,14 +122,23 @@ pub struct Drift {
     pub energy: f64,
     /// The energy scale.
     pub scale: f64,
+    /// The band of the departure over the run's first steps, when that is what the drift exceeds.
+    pub band: Option<f64>,
 }
 
 impl Drift {
     /// The sentence a warning says.
     pub fn describe(&self) -> String {
+        let band = match self.band {
+            Some(band) => format!(
+                ", {:.1} times its largest departure {band:.2e} over the run's first steps",
+                (self.energy - self.first).abs() / band
+            ),
+            None => String::new(),
+        };
         format!(
-            "the energy has drifted from {:.6e} to {:.6e} ({:.1} % of its scale {:.3e}): far more than the bounded \
-             error of a step that resolves the motion; the step is too large for the motion here (a fast \
+            "the energy has drifted from {:.6e} to {:.6e} ({:.1} % of its scale {:.3e}{band}): far more than the \
+             bounded error of a step that resolves the motion; the step is too large for the motion here (a fast \
              oscillation or gyration, say) or the coordinates degenerate, and the trajectory from here on cannot \
              be trusted (try a smaller step)",
             self.first,
@@ -192,6 +213,17 @@ pub(crate) struct Monitor {
     /// The drift found, until taken ([`Monitor::take_drift`]); `drifted` once one was found.
     drift: Option<Drift>,
     drifted: bool,
+    /// Steps left in the window of the run's first steps, and the band max |H_k − H_first| over the
+    /// drift looks in it.
+    window: usize,
+    band: f64,
+    /// Ordinary steps between drift looks.
+    every: usize,
+    /// Whether the last look found the energy beyond the band (a drift against the band must be
+    /// found at two looks in a row: a spike, the transient error of passing near a pole, is not one).
+    beyond_band: bool,
+    /// Changes still to be taken as the new level without the jump test ([`Monitor::rebase`]).
+    rebased: u8,
 }
 
 impl Monitor {
@@ -213,25 +245,59 @@ impl Monitor {
             until_drift: 1,
             drift,
             drifted,
+            window: 0,
+            band: 0.0,
+            every: DRIFT_EVERY,
+            beyond_band: false,
+            rebased: 0,
         }
+    }
+
+    /// After a switch to another chart of an atlas: the discrete energy E_k is the chart's own (each
+    /// chart's method conserves its own modified energy, which differ by O(h²)), so the changes of the
+    /// step that switches and of the next are taken as the new level (as no change), not tested as
+    /// jumps. The drift is still measured from the run's first step, so a level that moves at
+    /// switches over the run is reported as one.
+    pub fn rebase(&mut self) {
+        self.rebased = 2;
+    }
+
+    /// Sets the drift looks for a run of `steps` steps: at least every [`DRIFT_EVERY`] ordinary
+    /// steps and at most 64 per run, with the band of the departure measured over its first eighth.
+    pub fn set_window(&mut self, steps: usize) {
+        self.window = (steps / 8).max(16);
+        self.every = (steps / 64).max(DRIFT_EVERY);
+    }
+
+    /// Whether the next [`Monitor::push`] wants the energy H(q, p) of the state the step reached: at
+    /// the first step and at the drift looks.
+    #[inline(always)]
+    pub fn wants_state_energy(&self) -> bool {
+        self.until_drift <= 1 || self.previous.is_nan()
     }
 
     fn typical(&self) -> f64 {
         self.sum / self.count.max(1) as f64
     }
 
-    /// Takes step k's energy `energy` (at `at` = (k, t_k)) and the size |⟨p, Δq/h⟩| of its kinetic
-    /// part; returns a jump when an excursion ends away from its level.
+    /// Takes step k's energy `energy` (at `at` = (k, t_k)), the size |⟨p, Δq/h⟩| of its kinetic
+    /// part and, when [`Monitor::wants_state_energy`], the energy H of the state it reached (the
+    /// drift is measured on H, a function on T*Q, the same in every chart of an atlas); returns a jump
+    /// when an excursion ends away from its level.
     #[inline]
-    pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64) -> Option<Jump> {
+    pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64, state: Option<f64>) -> Option<Jump> {
         let before = std::mem::replace(&mut self.previous, energy);
-        let change = (energy - before).abs();
+        // A change across a switch of charts is the new level's, not a jump (see `rebase`).
+        let rebased = self.rebased > 0 && !before.is_nan();
+        self.rebased -= u8::from(rebased);
+        let change = if rebased { 0.0 } else { (energy - before).abs() };
         // An ordinary step, by the test below written without a division.
         let ordinary = change <= self.threshold || change * self.count as f64 <= RATIO * self.sum;
+        self.window = self.window.saturating_sub(1);
         if ordinary && self.excursion.is_none() && self.count >= WARM_UP {
             self.until_drift -= 1;
-            if self.until_drift == 0 {
-                self.watch_drift(at, energy, kinetic);
+            if let (0, Some(state)) = (self.until_drift, state) {
+                self.watch_drift(at, state, kinetic);
             }
             self.sum += change;
             self.count += 1;
@@ -240,30 +306,45 @@ impl Monitor {
             }
             return None;
         }
-        self.unusual(at, energy, before, change, kinetic)
+        self.unusual(at, energy, before, change, kinetic, state)
     }
 
     /// Reports a drift at step `at` (an ordinary step: a jump is reported as one, and the energy's
-    /// level after it is the new reference). Called every [`DRIFT_EVERY`] ordinary steps, whose
-    /// scales make the mean.
+    /// level after it is the new reference). Called at the looks (every [`DRIFT_EVERY`] ordinary
+    /// steps or more, see [`Monitor::set_window`]), whose scales make the mean.
     #[cold]
     fn watch_drift(&mut self, at: (usize, f64), energy: f64, kinetic: f64) {
-        self.until_drift = DRIFT_EVERY;
+        self.until_drift = self.every;
+        if self.first.is_nan() {
+            // The first look after a jump: the new reference.
+            self.first = energy;
+            return;
+        }
+        if self.window > 0 {
+            self.band = self.band.max((energy - self.first).abs());
+        }
         self.scale_sum += energy.abs().max(kinetic);
         self.steps += 1.0;
-        // |E − E_first| > ENERGY_DRIFT · max(first scale, mean scale), without a division.
-        let departure = (energy - self.first).abs() * self.steps;
-        if departure > ENERGY_DRIFT * (self.first_scale * self.steps).max(self.scale_sum) && !self.drifted {
-            self.drifted(at, energy);
+        // |E − E_first| > ENERGY_DRIFT · max(first scale, mean scale), without a division; or more
+        // than DRIFT_BAND times the band of the first steps, and DRIFT_FLOOR of the scale.
+        let departure = (energy - self.first).abs();
+        let scale = (self.first_scale * self.steps).max(self.scale_sum);
+        let beyond_scale = departure * self.steps > ENERGY_DRIFT * scale;
+        let beyond_band =
+            self.window == 0 && departure > DRIFT_BAND * self.band && departure * self.steps > DRIFT_FLOOR * scale;
+        let persistent = std::mem::replace(&mut self.beyond_band, beyond_band) && beyond_band;
+        if (beyond_scale || persistent) && !self.drifted {
+            self.drifted(at, energy, !beyond_scale);
         }
     }
 
-    /// Records the drift of step `at`.
+    /// Records the drift of step `at`, found against the band of the first steps or the scale.
     #[cold]
-    fn drifted(&mut self, at: (usize, f64), energy: f64) {
+    fn drifted(&mut self, at: (usize, f64), energy: f64, against_band: bool) {
         self.drifted = true;
         let scale = self.first_scale.max(self.scale_sum / self.steps);
-        self.drift = Some(Drift { at, first: self.first, energy, scale });
+        let band = against_band.then_some(self.band);
+        self.drift = Some(Drift { at, first: self.first, energy, scale, band });
     }
 
     /// The drift found since the last call, if any (at most one per run).
@@ -279,9 +360,17 @@ impl Monitor {
 
     /// [`Monitor::push`] for the first steps, an excursion, or a step that may start one.
     #[cold]
-    fn unusual(&mut self, at: (usize, f64), energy: f64, before: f64, change: f64, kinetic: f64) -> Option<Jump> {
+    fn unusual(
+        &mut self,
+        at: (usize, f64),
+        energy: f64,
+        before: f64,
+        change: f64,
+        kinetic: f64,
+        state: Option<f64>,
+    ) -> Option<Jump> {
         if before.is_nan() && self.count == 0 && self.excursion.is_none() {
-            self.first = energy;
+            self.first = state.unwrap_or(energy);
             self.first_scale = energy.abs().max(kinetic);
             self.rescale(energy.abs().max(kinetic));
             return None;
@@ -299,8 +388,9 @@ impl Monitor {
                 return None;
             }
             let excursion = self.excursion.take().expect("under way");
-            // The jump is reported; a later drift is measured from the level after it.
-            self.first = energy;
+            // The jump is reported; a later drift is measured from the level after it (the next
+            // look's H).
+            self.first = f64::NAN;
             return Some(self.jump(excursion, energy));
         }
         let starts = if self.count < WARM_UP {
@@ -311,8 +401,8 @@ impl Monitor {
         if starts || !change.is_finite() {
             self.excursion = Some(Excursion { at, level: before, steps: 0, calm: 0 });
         } else {
-            if self.count >= WARM_UP {
-                self.watch_drift(at, energy, kinetic);
+            if let (true, Some(state)) = (self.count >= WARM_UP, state) {
+                self.watch_drift(at, state, kinetic);
             }
             self.sum += change;
             self.count += 1;

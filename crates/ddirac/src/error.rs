@@ -157,6 +157,14 @@ pub enum Error {
         /// Number of coordinates.
         coordinates: usize,
     },
+    /// A chart of the system's atlas fails a hypothesis a run through it relies on ([`crate::check`]).
+    #[error("chart `{chart}` of the atlas: {problem}")]
+    Chart {
+        /// The chart's name.
+        chart: String,
+        /// What is wrong with it.
+        problem: ChartProblem,
+    },
     /// Compiled derivatives were required (`method.derivatives = "compiled"`) but could not be built.
     #[error("compiled derivatives are not available: {0}")]
     NotCompiled(#[source] crate::compiled::CompileError),
@@ -253,6 +261,102 @@ impl std::fmt::Display for Hypothesis {
             Hypothesis::Invariance => "the invariance of L_d under the group coordinate",
             Hypothesis::Periodicity => "the 2π-periodicity of L in the angle",
         })
+    }
+}
+
+/// What is wrong with a chart of an atlas ([`Error::Chart`]).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ChartProblem {
+    /// None of the points sampled over the main chart falls where the chart's quality is positive.
+    NoDomain {
+        /// Main-chart points sampled.
+        points: usize,
+    },
+    /// Its maps are not inverse: ψ(φ(q')) ≠ q' at the chart point `at`.
+    NotInverse {
+        /// |ψ(φ(q')) − q'|∞ / (1 + |q'|∞) there (infinite where φ(q') is not finite).
+        deviation: f64,
+        /// The chart point.
+        at: Vec<f64>,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
+    /// Its quality says it is good at the chart point `at`, where ∂²L/∂v² in the chart is singular.
+    SingularWhereGood {
+        /// The chart point.
+        at: Vec<f64>,
+        /// The chart's quality there.
+        quality: f64,
+    },
+    /// The Lagrangian in the chart is not invariant under translation of its group coordinate.
+    NotInvariant {
+        /// The chart's group coordinate.
+        coordinate: String,
+        /// Largest relative change of L_d observed.
+        deviation: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
+    /// The Lagrangian in the chart is not 2π-periodic in a coordinate of the chart declared an angle.
+    NotPeriodic {
+        /// The chart's angle.
+        coordinate: String,
+        /// Largest relative change of L_d observed.
+        deviation: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
+    /// A hypothesis could not be tested in the chart: L_d is finite at too few pairs there.
+    Undecided {
+        /// The hypothesis.
+        hypothesis: Hypothesis,
+        /// The chart's coordinate it concerns.
+        coordinate: String,
+        /// Pairs with a finite L_d.
+        samples: usize,
+    },
+}
+
+impl std::fmt::Display for ChartProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let point = |at: &[f64]| at.iter().map(|x| format!("{x:.6}")).collect::<Vec<_>>().join(", ");
+        match self {
+            ChartProblem::NoDomain { points } => write!(
+                f,
+                "none of {points} points sampled over the main chart falls where its quality is positive, so its maps \
+                 cannot be tested (check its `quality` and `from_main`)"
+            ),
+            ChartProblem::NotInverse { deviation, at, tolerance } => write!(
+                f,
+                "its maps are not inverse: from its point ({}) to the main chart and back lands {deviation:.2e} \
+                 (relative) away, more than the tolerance {tolerance:.0e}; `to_main` must be the inverse of \
+                 `from_main` wherever the chart's quality is positive",
+                point(at)
+            ),
+            ChartProblem::SingularWhereGood { at, quality } => write!(
+                f,
+                "its quality is {quality:.3} at its point ({}), where the Lagrangian in the chart has a singular \
+                 ∂²L/∂v²: the chart is not good where its quality says it is",
+                point(at)
+            ),
+            ChartProblem::NotInvariant { coordinate, deviation, tolerance } => write!(
+                f,
+                "the discrete Lagrangian in the chart is not invariant under translation of its group coordinate \
+                 `{coordinate}`: L_d changes by {deviation:.2e} (relative), more than the tolerance {tolerance:.0e}; \
+                 a reduced run would reduce by a symmetry that is not one (declare `{coordinate}` a shape coordinate)"
+            ),
+            ChartProblem::NotPeriodic { coordinate, deviation, tolerance } => write!(
+                f,
+                "the Lagrangian in the chart is not 2π-periodic in its angle `{coordinate}`: L_d changes by \
+                 {deviation:.2e} (relative) under a shift by 2π, more than the tolerance {tolerance:.0e}"
+            ),
+            ChartProblem::Undecided { hypothesis, coordinate, samples } => write!(
+                f,
+                "{hypothesis} `{coordinate}` could not be tested: L_d in the chart is finite at only {samples} pairs \
+                 near its best sampled point"
+            ),
+        }
     }
 }
 

@@ -54,12 +54,12 @@ mod stepper;
 mod system;
 pub mod systems;
 
-pub use check::{check, CheckReport, Finding, CONSTRAINT_TOLERANCE};
+pub use check::{check, ChartFinding, CheckReport, Finding, CONSTRAINT_TOLERANCE, ROUND_TRIP_TOLERANCE};
 pub use composition::Composition;
 pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
 pub use energy_jump::{EnergyJump, JumpAction, ENERGY_DRIFT};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased, ErasedDynamic, Holds};
-pub use error::{Error, Hypothesis, Input, Time};
+pub use error::{ChartProblem, Error, Hypothesis, Input, Time};
 pub use integrator::{integrate, integrate_watched, solve, OutputError, WATCH_STEPS};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;
@@ -71,7 +71,7 @@ pub use reduction::connection::Connection;
 pub use scalar::{RuntimeInput, Scalar};
 pub use sizes::{sizes_text, SIZES};
 pub use stepper::{
-    OwnedRow, OwnedRowIn, State, StateIn, StepReport, Stepper, StepperIn, IMPLAUSIBLE_ENERGY_CHANGE, LEGENDRE_DROP,
-    MAX_ANGLE_STEP, MAX_SUBDIVISION,
+    OwnedRow, OwnedRowIn, State, StateIn, StepReport, Stepper, StepperIn, IMPLAUSIBLE_ENERGY_CHANGE, KICK,
+    LEGENDRE_DROP, LOOSE_TOLERANCE_MARGIN, MAX_ANGLE_STEP, MAX_SUBDIVISION,
 };
 pub use system::{Chart, Coordinate, CoordinateKind, Role, Split, System};

@@ -17,6 +17,10 @@ use crate::linalg::Factorization;
 
 /// Tolerance and iteration limit of the Newton solver.
 ///
+/// The solver takes at least one correction: the starting point (a predictor) is accepted only
+/// after a correction from it passed the test, so a loose tolerance cannot accept a predictor far
+/// from the root.
+///
 /// ```
 /// let options = ddirac::NewtonOptions { tolerance: 1e-10, ..Default::default() };
 /// assert_eq!(options.max_iterations, 50);
@@ -305,11 +309,13 @@ fn chord<Dm: Dim>(
     let (mut stale, mut polished) = (false, false);
     loop {
         if residual <= threshold || small_correction {
-            // The first iterate to pass the test may be only just within it: after a reused Jacobian
-            // (linear convergence), or after a fresh one from a good predictor when the correction
-            // was not yet tiny. One more correction brings it to round-off, as the overshoot of a
-            // second classical Newton step would.
-            let settled = iterations == 0 || (!stale && small_correction);
+            // The first iterate to pass the test may be only just within it: the starting point
+            // itself (a predictor whose residual is small only because the tolerance is loose), after
+            // a reused Jacobian (linear convergence), or after a fresh one from a good predictor when
+            // the correction was not yet tiny. One more correction brings it to round-off, as the
+            // overshoot of a second classical Newton step would: a root is never the starting point
+            // unchecked by a correction.
+            let settled = iterations > 0 && !stale && small_correction;
             if settled || polished || iterations >= options.max_iterations {
                 return Ok(NewtonStats { iterations, residual, jacobians });
             }

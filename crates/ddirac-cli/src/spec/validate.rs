@@ -84,6 +84,7 @@ impl Spans {
                 return self.reduced.clone().map(|s| (s, "reduction asked here"))
             }
             E::OffPrimaryConstraint { .. } => return self.momentum.clone().map(|s| (s, "off the primary constraint")),
+            E::Chart { .. } => return self.system.clone().map(|s| (s, "the atlas of this system")),
             E::Undetermined { .. } => return self.system.clone().map(|s| (s, "this system")),
             E::Newton { .. } | E::Diverged { .. } | E::EnergyJump { .. } => {
                 return self.time.clone().map(|s| (s, "this time grid"))
@@ -173,6 +174,13 @@ impl Spans {
                         .into(),
                 )
             }
+            ddirac::Error::Chart { .. } => Some(
+                "a run through an atlas steps in each chart with the Lagrangian carried there by `to_main`, and moves \
+                 between charts by `from_main`: both must be exact inverses on the chart's domain (where its \
+                 `quality` is positive), its `quality` high only where the chart is regular, and its group \
+                 coordinates symmetries of L; `method.atlas = false` runs in the main chart alone"
+                    .into(),
+            ),
             ddirac::Error::NoSymmetry => {
                 if let Some(span) = self.system.clone().filter(|_| labels.is_empty()) {
                     labels.push(LabeledSpan::new_with_span(Some("no group coordinate".into()), span));

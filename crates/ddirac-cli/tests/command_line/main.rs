@@ -42,6 +42,7 @@ mod issue_11_two_runs_one_directory;
 mod issue_11_unchecked_reduction_warns;
 mod issue_12_seventeen_and_73_coordinates_in_a_spec;
 mod issue_13_charts_in_a_spec;
+mod issue_30_check_examines_charts;
 mod issue_30_compare_csv_number_format;
 mod issue_30_merge_verifies_shards;
 mod issue_30_messages_that_mislead;

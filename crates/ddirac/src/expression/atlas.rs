@@ -5,10 +5,8 @@
 //! The maps are expressions like the Lagrangian, evaluated by the same interpreter over any scalar,
 //! so that the Lagrangian of a chart, L ∘ Tφ, is differentiated (and traced) as the Lagrangian is.
 
-use std::f64::consts::PI;
-
 use super::compile::closest;
-use super::{CompiledExpression, ExpressionError, ExpressionSpec, Origin, Scope, FUNCTIONS};
+use super::{CompiledExpression, ExpressionError, ExpressionSpec, Origin, Scope, CONSTANTS, FUNCTIONS};
 use crate::Coordinate;
 
 /// A chart of a text system's atlas, as a spec gives it.
@@ -120,10 +118,8 @@ fn scope(coordinates: &[Coordinate], spec: &ExpressionSpec) -> Scope {
     for c in coordinates {
         scope = scope.variable(&c.name);
     }
-    let taken =
-        |name: &str| coordinates.iter().any(|c| c.name == name) || spec.parameters.iter().any(|(p, _)| p == name);
-    if !taken("pi") {
-        scope = scope.constant("pi", PI);
+    for &(name, value) in CONSTANTS {
+        scope = scope.constant(name, value);
     }
     for (name, value) in &spec.parameters {
         scope = scope.constant(name, *value);
@@ -190,6 +186,9 @@ fn check_names(
         }
         if FUNCTIONS.contains(&c.name.as_str()) {
             return Err(invalid("it is the name of a function"));
+        }
+        if let Some(reason) = super::system::constant(&c.name) {
+            return Err(invalid(&reason));
         }
         let first = if spec.parameters.iter().any(|(p, _)| p == &c.name) {
             Some(format!("parameter `{}`", c.name))

@@ -9,6 +9,10 @@ pub const FUNCTIONS: &[&str] = &[
     "pow", "min", "max",
 ];
 
+/// The constants of the language, by name, with their values: every expression may use them, so no
+/// coordinate, parameter or definition may take their names.
+pub const CONSTANTS: &[(&str, f64)] = &[("pi", std::f64::consts::PI)];
+
 /// A function of the language: an operation of one or two operands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Function {

@@ -18,7 +18,8 @@
 //! says to write `^`. Numbers take any usual notation (`1`, `1.5`, `.5`, `3.`, `1e-3`, `2.5E+4`);
 //! names are `[A-Za-z_][A-Za-z0-9_]*`. The functions are `sin cos tan asin acos atan sinh cosh tanh
 //! exp ln log sqrt abs` (one argument; `log` is the natural logarithm, like `ln`) and `atan2(y, x)
-//! pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]). `x^n` (or `pow(x, n)`) with an integer constant
+//! pow(x, y) min(a, b) max(a, b)` ([`FUNCTIONS`]); the constant is `pi` ([`CONSTANTS`]), and no
+//! coordinate, parameter or definition may take its name. `x^n` (or `pow(x, n)`) with an integer constant
 //! n, |n| ≤ 16, is the product of binary exponentiation (`x^2` is x·x, as in `powi`), with
 //! 16 < |n| ≤ 1024 `powi`, with another constant exponent `powf` (`x^0.5` is `sqrt(x)`), and
 //! otherwise `exp(n ln x)`.
@@ -73,7 +74,7 @@ pub use atlas::{ChartPart, ChartSpec};
 pub use compile::Scope;
 pub use compiled_expression::CompiledExpression;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
-pub use functions::FUNCTIONS;
+pub use functions::{CONSTANTS, FUNCTIONS};
 pub use lagrangian::ExpressionLagrangian;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};

@@ -9,7 +9,7 @@
 //! the name.
 
 use super::compile::closest;
-use super::{CompiledExpression, ExpressionError, ExpressionLagrangian, Origin, Scope, FUNCTIONS};
+use super::{CompiledExpression, ExpressionError, ExpressionLagrangian, Origin, Scope, CONSTANTS, FUNCTIONS};
 use crate::sizes::RuntimeSized;
 use crate::{Chart, Coordinate, DynSystem, Erased, ErasedDynamic, System};
 
@@ -293,14 +293,9 @@ pub(super) fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError
         exact = exact.unavailable(&name, "an exact solution depends on `t` and the parameters only");
     }
     lagrangian = lagrangian.unavailable("t", "a Lagrangian does not depend on time (`t` is for exact solutions)");
-    let declared = |name: &str| {
-        names().any(|n| n == name)
-            || spec.parameters.iter().any(|(n, _)| n == name)
-            || spec.definitions.iter().any(|(n, _)| n == name)
-    };
-    if !declared("pi") {
-        lagrangian = lagrangian.constant("pi", std::f64::consts::PI);
-        exact = exact.constant("pi", std::f64::consts::PI);
+    for &(name, value) in CONSTANTS {
+        lagrangian = lagrangian.constant(name, value);
+        exact = exact.constant(name, value);
     }
     for (name, value) in &spec.parameters {
         lagrangian = lagrangian.variable(name);
@@ -342,7 +337,15 @@ pub(super) fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError
     Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions, atlas })
 }
 
-/// Checks that every declared name is an identifier, not a function, and declared once.
+/// Why `name` cannot be declared, if it names a constant of the language.
+pub(super) fn constant(name: &str) -> Option<String> {
+    CONSTANTS
+        .iter()
+        .find(|(c, _)| *c == name)
+        .map(|(c, value)| format!("it is the constant `{c}` = {value} of the language, which every expression may use"))
+}
+
+/// Checks that every declared name is an identifier, not a function or a constant, and declared once.
 fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
     if spec.coordinates.is_empty() {
         return Err(ExpressionError::NoCoordinates);
@@ -362,6 +365,9 @@ fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
         }
         if FUNCTIONS.contains(&name) {
             return Err(invalid("it is the name of a function"));
+        }
+        if let Some(reason) = constant(name) {
+            return Err(invalid(&reason));
         }
         if let Some((_, first)) = declared.iter().find(|(n, _)| n == name) {
             let (name, first) = (name.to_owned(), first.clone());

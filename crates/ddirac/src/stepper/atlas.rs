@@ -3,7 +3,8 @@
 //! Each chart has its own [`ChartStepper`] (its scheme, derivatives, predictor and Newton memory),
 //! prepared when the run first enters the chart. Each step is taken in the chart preferred at its
 //! midpoint ([`SWITCH_BELOW`]); the run moves the state there by the cotangent lift
-//! ([`atlas::transition`]) and continues from a first step, with the run's record carried over.
+//! ([`atlas::transition`]) and continues from a first step, with the run's record and energy watch
+//! carried over.
 //! Rows, states and the summary are given in the main chart, with continuous angles. A run without
 //! an atlas, or with `method.atlas = false`, is its main chart's stepper alone, step for step.
 
@@ -98,7 +99,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     }
 
     fn new_here(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
-        let main = ChartStepper::new(InChart::new(system.clone(), 0), problem, method)?;
+        let mut main = ChartStepper::new(InChart::new(system.clone(), 0), problem, method, true)?;
+        main.add_check_warnings(crate::check::atlas_verdict(&system, problem, method)?);
         let extra = system.charts().len();
         let near = main.progress.config.unwrapped();
         let dim = system.dim();
@@ -263,10 +265,9 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         }
         let there = atlas::point(&self.system, 0, chart, main);
         let back = self.system.nearest_in_main(atlas::point(&self.system, chart, 0, &there), main, &self.kinds);
-        let scale = main.as_ref().iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        let apart = back.as_ref().iter().zip(main.as_ref()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let apart = atlas::round_trip_distance(main.as_ref(), back.as_ref());
         let quality = self.system.chart_quality(chart, &there);
-        (apart <= DOMAIN_TOLERANCE * scale && quality.is_finite()).then_some(quality)
+        (apart <= DOMAIN_TOLERANCE && quality.is_finite()).then_some(quality)
     }
 
     /// The chart for a step whose midpoint is `q` (in the current chart), a function of the point
@@ -306,7 +307,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     }
 
     /// Moves the state of step k to chart `to` by the cotangent lift and continues there from a
-    /// first step, with the run's record.
+    /// first step, with the run's record and energy watch.
     fn switch_to(&mut self, to: usize) -> Result<(), Error> {
         let k = self.k();
         let (q, p) = self.chart_state();
@@ -315,20 +316,49 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         };
         if to == 0 {
             q_to = self.system.nearest_in_main(q_to, &self.near, &self.kinds);
+        } else {
+            self.inverse_at(to, &q_to)?;
         }
         if self.charts[to].is_none() {
             self.charts[to] = Some(self.prepare(to, &q_to, &p_to)?);
         }
-        let record = self.chart_mut().progress.record.clone();
+        // The run's diagnostics span the whole run: its record, and the energy watch with the
+        // energy of the last step (H is a function on T*Q, and each chart's discrete energy follows it
+        // to O(h²)), so that a jump or a drift is measured against the run before the switch.
+        let from = &self.chart().progress;
+        let (record, monitor, last_energy) = (from.record.clone(), from.monitor.clone(), from.last_energy);
         let stepper = self.charts[to].as_mut().expect("prepared");
         stepper.restart(&StateIn::new(k, q_to, p_to))?;
-        stepper.progress.record = record;
+        let progress = &mut stepper.progress;
+        (progress.record, progress.monitor, progress.last_energy) = (record, monitor, last_energy);
+        progress.monitor.rebase();
         if self.current == 0 {
             self.near = q;
         }
         self.current = to;
         self.switches += 1;
         Ok(())
+    }
+
+    /// An error unless the maps of chart `chart` are inverse at its point `q` (to
+    /// [`crate::ROUND_TRIP_TOLERANCE`]), where the run is about to step in it: the check tested them
+    /// on points sampled over the chart's domain, and this is the point the run relies on.
+    fn inverse_at(&self, chart: usize, q: &Dm::Array<f64>) -> Result<(), Error> {
+        let coordinates = atlas::all_charts(&self.system).swap_remove(chart);
+        let kinds = self.dim.array(|i| coordinates[i].kind);
+        let there = atlas::point(&self.system, chart, 0, q);
+        let back = atlas::nearest_turns(atlas::point(&self.system, 0, chart, &there), q, &kinds);
+        let apart = atlas::round_trip_distance(q.as_ref(), back.as_ref());
+        if apart <= crate::ROUND_TRIP_TOLERANCE {
+            return Ok(());
+        }
+        let chart_name = self.system.charts().swap_remove(chart - 1).0;
+        let problem = crate::ChartProblem::NotInverse {
+            deviation: apart,
+            at: q.as_ref().to_vec(),
+            tolerance: crate::ROUND_TRIP_TOLERANCE,
+        };
+        Err(Error::Chart { chart: chart_name, problem })
     }
 
     /// The stepper of chart `chart`, prepared at (q, p) of that chart: the method of the run, without
@@ -344,7 +374,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         let method = Method { connection: None, reduced: self.method.reduced && has_group, ..self.method.clone() };
         let (q0, p0) = (q.as_ref().to_vec(), p.as_ref().to_vec());
         let problem = Problem { q0, initial: InitialMomentum::Momentum(p0), ..self.problem.clone() };
-        ChartStepper::new(in_chart, &problem, &method)
+        ChartStepper::new(in_chart, &problem, &method, false)
     }
 
     /// The row of the current step k in the main chart: q_k, p_k, the Hamiltonian, the momentum map
@@ -491,6 +521,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         if !main.renew(problem)? {
             return Ok(false);
         }
+        main.add_check_warnings(crate::check::atlas_verdict(&self.system, problem, &self.method)?);
         self.near = main.progress.config.unwrapped();
         self.problem = problem.clone();
         self.charts.iter_mut().skip(1).for_each(|chart| *chart = None);

@@ -4,8 +4,14 @@
 //!
 //! Two tests, both cheap where nothing is wrong:
 //!
-//! - every step, whether an angle advanced by more than [`MAX_ANGLE_STEP`] ([`races`]: N products
-//!   and comparisons, no branch);
+//! - every step, whether an angle's advance was not resolved by the step ([`AngleWatch`]: a few
+//!   operations per angle, no branch): more than [`MAX_ANGLE_STEP`], or a *kick* — an advance of
+//!   more than [`KICK`] times the angle's typical advance in the run so far (and not negligible,
+//!   [`NEGLIGIBLE_ADVANCE`]) that differs from the step before by more than half of the larger of the
+//!   two: the angle's rate changed by its own size within one step, which a step that resolves the
+//!   motion never does (over a passage of duration τ, the rate changes by about h/τ of itself per
+//!   step). A pole passage that the step does not resolve turns the azimuth by a fraction of the π
+//!   it turns in the flow, in one step, between steps that barely move it;
 //! - at such a step, and where Newton's method fails or the energy jumps, how near to singular the
 //!   Legendre map ∂²L/∂v² is ([`legendre::conditioning`], one evaluation of its Hessian), against the
 //!   start of the run: near a pole of spherical coordinates its smallest pivot falls like sin²θ,
@@ -24,24 +30,104 @@ pub const MAX_ANGLE_STEP: f64 = 1.0;
 /// fallen below this fraction of the ratio at the start of the run.
 pub const LEGENDRE_DROP: f64 = 1e-2;
 
-/// Whether an angle advanced by more than [`MAX_ANGLE_STEP`] in the step `dq`; `angles` is 1 at the
-/// angles and 0 elsewhere. Branch-free over the coordinates: it runs every step.
-#[inline(always)]
-pub(super) fn races(angles: &[f64], dq: &[f64]) -> bool {
-    let mut largest = 0.0f64;
-    for (a, d) in angles.iter().zip(dq) {
-        let turned = a * d.abs();
-        largest = if turned > largest { turned } else { largest };
-    }
-    largest > MAX_ANGLE_STEP
+/// How many times an angle's typical advance (its mean over the run's earlier steps) a step's advance
+/// must exceed to count as a kick.
+pub const KICK: f64 = 100.0;
+
+/// An advance (radians) below which no kick is reported: it moves a point of a unit sphere by less
+/// than a millionth of the radius.
+pub const NEGLIGIBLE_ADVANCE: f64 = 1e-6;
+
+/// Steps before the typical advance means enough for the kick test.
+const WARM_UP: usize = 4;
+
+/// The angles' advances in the run so far: which coordinates are angles, the last step's advance
+/// (signed) and the sum of their sizes over the steps without a kick, and how many those were.
+#[derive(Debug)]
+pub(super) struct AngleWatch<Dm: Dim> {
+    angles: Vec<usize>,
+    last: Dm::Array<f64>,
+    sum: Dm::Array<f64>,
+    steps: usize,
 }
 
-/// The angle that advanced most in the step `dq`, and by how much.
-#[cold]
-pub(super) fn fastest_angle(kinds: &[CoordinateKind], dq: &[f64]) -> (usize, f64) {
-    let angles = (0..kinds.len()).filter(|&i| kinds[i] == CoordinateKind::Angle);
-    let i = angles.max_by(|&i, &j| dq[i].abs().total_cmp(&dq[j].abs())).unwrap_or(0);
-    (i, dq[i])
+/// `clone_from` reuses the list of angles: the stepper of an atlas saves a step's progress at every
+/// step, without allocating.
+impl<Dm: Dim> Clone for AngleWatch<Dm> {
+    fn clone(&self) -> Self {
+        Self { angles: self.angles.clone(), last: self.last.clone(), sum: self.sum.clone(), steps: self.steps }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.angles.clone_from(&source.angles);
+        self.last.clone_from(&source.last);
+        self.sum.clone_from(&source.sum);
+        self.steps = source.steps;
+    }
+}
+
+/// An angle whose advance the step did not resolve: which, by how much, and how many times its
+/// typical advance (`None` while there is none yet).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Unresolved {
+    pub(super) angle: usize,
+    pub(super) by: f64,
+    pub(super) times_typical: Option<f64>,
+}
+
+impl<Dm: Dim> AngleWatch<Dm> {
+    /// The watch over the coordinates of `kinds` that are angles.
+    pub(super) fn new(kinds: &Dm::Array<CoordinateKind>) -> Self {
+        let dim = Dm::of(kinds);
+        let angles = (0..dim.n()).filter(|&i| kinds[i] == CoordinateKind::Angle).collect();
+        Self { angles, last: dim.array(|_| 0.0), sum: dim.array(|_| 0.0), steps: 0 }
+    }
+
+    /// Takes the step `dq` and says whether an angle's advance was not resolved: more than
+    /// [`MAX_ANGLE_STEP`], or a kick. Branch-free over the angles: it runs every step.
+    #[inline(always)]
+    pub(super) fn watch(&mut self, dq: &Dm::Array<f64>) -> Option<Unresolved> {
+        let steps = self.steps as f64;
+        let warm = self.steps >= WARM_UP;
+        let mut unresolved = false;
+        for &i in &self.angles {
+            let (advance, last) = (dq[i], self.last[i]);
+            let size = advance.abs();
+            let kick = warm
+                & (size * steps > KICK * self.sum[i])
+                & ((advance - last).abs() > 0.5 * size.max(last.abs()))
+                & (size > NEGLIGIBLE_ADVANCE);
+            unresolved |= kick | (size > MAX_ANGLE_STEP);
+        }
+        let found = unresolved.then(|| self.unresolved(dq));
+        let counted = if unresolved { 0.0 } else { 1.0 };
+        for &i in &self.angles {
+            self.last[i] = dq[i];
+            self.sum[i] += counted * dq[i].abs();
+        }
+        self.steps += usize::from(!unresolved);
+        found
+    }
+
+    /// The angle of the largest advance relative to its typical one (or, before there is a typical
+    /// advance, of the largest advance) in the step `dq`.
+    #[cold]
+    fn unresolved(&self, dq: &Dm::Array<f64>) -> Unresolved {
+        let typical = |i: usize| (self.steps > 0).then(|| self.sum[i] / self.steps as f64);
+        // An advance beyond MAX_ANGLE_STEP first, then the largest relative to the typical one.
+        let measure = |i: usize| {
+            let size = dq[i].abs();
+            (size > MAX_ANGLE_STEP, typical(i).map_or(size, |t| if size == 0.0 { 0.0 } else { size / t }))
+        };
+        let order = |i: usize, j: usize| {
+            let ((a, x), (b, y)) = (measure(i), measure(j));
+            a.cmp(&b).then(x.total_cmp(&y))
+        };
+        let angle = self.angles.iter().copied().max_by(|&i, &j| order(i, j)).unwrap_or(0);
+        let by = dq[angle];
+        let times_typical = typical(angle).filter(|t| *t > 0.0).map(|t| by.abs() / t);
+        Unresolved { angle, by, times_typical }
+    }
 }
 
 /// Why the coordinates may be to blame at (q, v): the Legendre map's pivot ratio and the coordinate

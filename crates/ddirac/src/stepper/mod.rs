@@ -14,13 +14,14 @@
 mod atlas;
 mod chart_watch;
 mod progress;
+mod resolution;
 mod stages;
 mod state;
 
 use std::time::Instant;
 
 use crate::chart::ConfigurationIn;
-use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning};
+use crate::diagnostics::{DerivativePath, MomentumMapDrift, Row, Summary, Warning, WarningKind};
 use crate::dim::Dim;
 use crate::integrator::OutputError;
 use crate::mechanics::dirac::LagrangeDirac;
@@ -34,9 +35,10 @@ use crate::{
 };
 
 pub use atlas::{Stepper, StepperIn};
-pub use chart_watch::{LEGENDRE_DROP, MAX_ANGLE_STEP};
+pub use chart_watch::{KICK, LEGENDRE_DROP, MAX_ANGLE_STEP};
 pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
+pub use resolution::LOOSE_TOLERANCE_MARGIN;
 use stages::Stages;
 pub use stages::MAX_SUBDIVISION;
 use state::Memory;
@@ -142,8 +144,6 @@ struct Context<S, Dm: Dim> {
     split: Split,
     kinds: Dm::Array<CoordinateKind>,
     wrap_angles: bool,
-    /// 1 at the angles, 0 elsewhere ([`chart_watch::races`]).
-    angles: Dm::Array<f64>,
     /// The Legendre map's pivot ratio at the start of the run ([`legendre::conditioning`]), what the
     /// chart watch compares with.
     legendre_at_start: f64,
@@ -152,11 +152,14 @@ struct Context<S, Dm: Dim> {
 impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
     /// Checks `problem` and `method` for `system` as [`crate::integrate`] does, and prepares the
     /// first step: an error for input that a run refuses, or for a hypothesis that fails
-    /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary).
-    pub fn new(system: S, problem: &Problem, method: &Method) -> Result<Self, Error> {
+    /// ([`crate::CheckReport::verdict`]; the warnings it allows go into the summary). With
+    /// `hypotheses` off the hypotheses are taken as tested (a chart of an atlas, whose hypotheses the
+    /// run tested over its whole domain before its first step).
+    pub fn new(system: S, problem: &Problem, method: &Method, hypotheses: bool) -> Result<Self, Error> {
         let dim = system.dim();
         let setup = Setup::new(&system, problem, method)?;
-        let check_warnings = crate::check::findings(&system, problem, method, &setup).verdict(method)?;
+        let check_warnings =
+            if hypotheses { crate::check::findings(&system, problem, method, &setup).verdict(method)? } else { vec![] };
         let coordinates = system.coordinates();
         let kinds = dim.array(|i| coordinates[i].kind);
         let (h, steps) = (problem.step, problem.steps);
@@ -216,10 +219,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
             }
             DerivativePath::Dual { .. } => newton::KeptJacobian::new(dim),
         };
-        let progress = equipped!(&schemes, st => Progress::cold(
+        let mut progress = equipped!(&schemes, st => Progress::cold(
             &st.first().scheme, &st.gammas, &fresh_kept, start, &setup.dq0, &kinds, &setup.split, method, warnings
         ));
-        let angles = dim.array(|i| f64::from(u8::from(kinds[i] == CoordinateKind::Angle)));
+        progress.monitor.set_window(steps);
         Ok(Self {
             context: Context {
                 system,
@@ -230,7 +233,6 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
                 split: setup.split,
                 kinds,
                 wrap_angles: false,
-                angles,
                 legendre_at_start,
             },
             schemes,
@@ -240,6 +242,15 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
             started,
             progress,
         })
+    }
+
+    /// Adds the warnings of hypotheses tested beyond this chart (the atlas's) to those the run's
+    /// record starts with.
+    fn add_check_warnings(&mut self, warnings: Vec<Warning>) {
+        for warning in warnings {
+            self.check_warnings.push(warning.clone());
+            self.progress.record.warnings.push(warning);
+        }
     }
 
     /// The increment q_{k+1} − q_k the predictor expects for the next step (the sum over its
@@ -395,7 +406,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         let start = (state.k, state.q.clone(), state.p.clone());
         let warnings = self.check_warnings.clone();
         let (kinds, split, method) = (&self.context.kinds, &self.context.split, &self.context.method);
-        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &dq, kinds, split, method, warnings));
+        let mut progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &dq, kinds, split, method, warnings));
+        progress.monitor.set_window(self.context.steps - state.k);
         self.progress = progress;
         equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));
         Ok(())
@@ -425,7 +437,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         let legendre_at_start = legendre::conditioning_in(dim, system, &setup.q0, &v0).0;
         let (kinds, split) = (&self.context.kinds, &self.context.split);
         let (start, warnings) = ((0, setup.q0.clone(), setup.p0.clone()), check_warnings.clone());
-        let progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &setup.dq0, kinds, split, method, warnings));
+        let mut progress = equipped!(&self.schemes, e => Progress::cold(&e.first().scheme, &e.gammas, &self.fresh_kept, start, &setup.dq0, kinds, split, method, warnings));
+        progress.monitor.set_window(steps);
         let serve = equipped!(&self.schemes, e => e.sequence.iter().zip(&progress.stages).all(|(&d, memory)| {
             let e = &e.distinct[d];
             let predicted = memory.predictor.predict();
@@ -450,6 +463,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         let (mut monitor, mut record) = (progress.monitor.clone(), progress.record.clone());
         if let Some(jump) = monitor.finish() {
             jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
+        }
+        let method = &self.context.method;
+        if let Some(message) = record.resolution.loose(method.newton.tolerance, method.composition.order()) {
+            record.warnings.push(Warning::new(WarningKind::LooseTolerance, None, message));
         }
         let final_q = config.output(self.context.wrap_angles).as_ref().to_vec();
         let final_p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(momenta)).as_ref().to_vec();

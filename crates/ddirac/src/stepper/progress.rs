@@ -2,6 +2,7 @@
 //! Newton Jacobian, the energy watch and the run's record ([`Progress`]); a step solved in closed form
 //! or by Newton's method ([`solve_step`]).
 
+use super::resolution::Resolution;
 use super::stages::{Stages, MAX_SUBDIVISION};
 use super::{chart_watch, Context, Equipped, FirstStep, OwnedRowIn, StepReport};
 use crate::chart::ConfigurationIn;
@@ -25,6 +26,8 @@ pub(super) struct Progress<Dm: Dim> {
     /// The solver's memory of each sub-step of a step ([`Stages`]; one for the basic method).
     pub(super) stages: Vec<StageMemory<Dm>>,
     pub(super) monitor: Monitor,
+    /// The advances of the angles ([`chart_watch::AngleWatch`]).
+    pub(super) angles: chart_watch::AngleWatch<Dm>,
     /// The discrete energy of the last step taken (NaN before the first), for the plausibility
     /// test of the next ([`IMPLAUSIBLE_ENERGY_CHANGE`]).
     pub(super) last_energy: f64,
@@ -56,6 +59,8 @@ pub(super) struct Record<Dm: Dim> {
     pub(super) discrete_energy: Accumulator,
     pub(super) newton: NewtonSummary,
     pub(super) warnings: Warnings,
+    /// What the steps resolve, for the test of the Newton tolerance against it.
+    pub(super) resolution: Resolution<Dm>,
 }
 
 /// `clone_from` reuses the vectors' memory: the stepper of an atlas saves a step's progress into
@@ -69,6 +74,7 @@ impl<Dm: Dim> Clone for Progress<Dm> {
             p_now: self.p_now.clone(),
             stages: self.stages.clone(),
             monitor: self.monitor.clone(),
+            angles: self.angles.clone(),
             last_energy: self.last_energy,
             record: self.record.clone(),
         }
@@ -81,6 +87,7 @@ impl<Dm: Dim> Clone for Progress<Dm> {
         self.p_now.clone_from(&source.p_now);
         self.stages.clone_from(&source.stages);
         self.monitor.clone_from(&source.monitor);
+        self.angles.clone_from(&source.angles);
         self.last_energy = source.last_energy;
         self.record.clone_from(&source.record);
     }
@@ -96,6 +103,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
             discrete_energy: self.discrete_energy,
             newton: self.newton,
             warnings: self.warnings.clone(),
+            resolution: self.resolution.clone(),
         }
     }
 
@@ -107,6 +115,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
         self.discrete_energy = source.discrete_energy;
         self.newton = source.newton;
         self.warnings.0.clone_from(&source.warnings.0);
+        self.resolution.clone_from(&source.resolution);
     }
 }
 
@@ -180,6 +189,7 @@ impl<Dm: Dim> Progress<Dm> {
             discrete_energy: Accumulator::default(),
             newton: NewtonSummary::default(),
             warnings: Warnings(warnings),
+            resolution: Resolution::new(dim),
         };
         record.drift(split, &momenta);
         Self {
@@ -195,6 +205,7 @@ impl<Dm: Dim> Progress<Dm> {
                 })
                 .collect(),
             monitor: Monitor::new(method.energy_jump),
+            angles: chart_watch::AngleWatch::new(kinds),
             last_energy: f64::NAN,
             record,
         }
@@ -412,12 +423,14 @@ impl<Dm: Dim> Progress<Dm> {
         let (k, action) = (self.k, method.energy_jump.action);
         let t = k as f64 * h;
         let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed } = taken;
-        if chart_watch::races(context.angles.as_ref(), dq.as_ref()) {
-            let (i, by) = chart_watch::fastest_angle(context.kinds.as_ref(), dq.as_ref());
-            let warning = self.fast_angle(context, &dq, i, by);
+        if let Some(unresolved) = self.angles.watch(&dq) {
+            let warning = self.fast_angle(context, &dq, unresolved);
             self.record.warnings.push(warning);
         }
         let record = &mut self.record;
+        if Resolution::<Dm>::watches(method.newton.tolerance) {
+            record.resolution.push(&dq);
+        }
         record.discrete_energy.push(discrete_energy);
         if fell_back {
             let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
@@ -425,9 +438,11 @@ impl<Dm: Dim> Progress<Dm> {
         }
         let jump = pv.and_then(|(pv, p_next)| {
             let pv = pv / h;
-            self.p_now = p_next;
             self.last_energy = pv - discrete_energy / h;
-            self.monitor.push((k, t), self.last_energy, pv.abs())
+            let state =
+                self.monitor.wants_state_energy().then(|| state_energy(context, &self.config, &composed, &dq, &p_next));
+            self.p_now = p_next;
+            self.monitor.push((k, t), self.last_energy, pv.abs(), state)
         });
         let jump = jump.map(|jump| {
             let cause = singular_chart(context, self.config.base(), &dq);
@@ -461,14 +476,27 @@ impl<Dm: Dim> Progress<Dm> {
         Ok(StepReport { k, discrete_energy, newton: stats })
     }
 
-    /// The warning for angle `i` advancing `by` radians in the step `dq` from q_k.
+    /// The warning for an angle whose advance in the step `dq` from q_k the step did not resolve.
     #[cold]
-    fn fast_angle<S: SystemIn<Dm>>(&self, context: &Context<S, Dm>, dq: &Dm::Array<f64>, i: usize, by: f64) -> Warning {
+    fn fast_angle<S: SystemIn<Dm>>(
+        &self,
+        context: &Context<S, Dm>,
+        dq: &Dm::Array<f64>,
+        unresolved: chart_watch::Unresolved,
+    ) -> Warning {
+        let chart_watch::Unresolved { angle, by, times_typical } = unresolved;
         let coordinates = context.system.coordinates();
-        let name = &coordinates[i].name;
+        let name = &coordinates[angle].name;
         let at = Some((self.k, self.k as f64 * context.h));
-        let advanced =
-            format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP);
+        let advanced = if by.abs() > chart_watch::MAX_ANGLE_STEP {
+            format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP)
+        } else {
+            let times = times_typical.map_or(String::new(), |r| format!(", {r:.1e} times its typical advance,"));
+            format!(
+                "`{name}` advanced by {by:.3e} rad in one step{times} and its rate changed by more than half within \
+                 the step"
+            )
+        };
         match singular_chart(context, self.config.base(), dq) {
             Some(cause) => Warning::new(
                 WarningKind::SingularChart,
@@ -484,6 +512,23 @@ impl<Dm: Dim> Progress<Dm> {
             ),
         }
     }
+}
+
+/// H(q_{k+1}, p_{k+1}) of the state a step reached from `config` (by the increment `dq`, or to the
+/// configuration of a composed step).
+#[cold]
+fn state_energy<S: SystemIn<Dm>, Dm: Dim>(
+    context: &Context<S, Dm>,
+    config: &ConfigurationIn<Dm>,
+    composed: &Option<(ConfigurationIn<Dm>, Vec<Dm::Vector>)>,
+    dq: &Dm::Array<f64>,
+    p_next: &Dm::Array<f64>,
+) -> f64 {
+    let q_next = match composed {
+        Some((reached, _)) => reached.base().clone(),
+        None => context.dim.array(|i| config.base()[i] + dq[i]),
+    };
+    legendre::hamiltonian_in(context.dim, &context.system, &q_next, p_next)
 }
 
 /// The chart watch's diagnosis at `q` for the increment `dq` ([`chart_watch::singular_chart`]).

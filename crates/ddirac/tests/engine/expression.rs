@@ -456,7 +456,7 @@ fn large_integer_exponents_have_exact_derivatives() {
 }
 
 #[test]
-fn pi_is_predefined_unless_the_spec_names_it() {
+fn pi_is_predefined_and_no_declaration_may_take_its_name() {
     use ddirac::expression::{ExpressionSpec, ExpressionSystem};
     use ddirac::{Coordinate, System};
     let spec = |parameters: Vec<(String, f64)>| ExpressionSpec {
@@ -469,6 +469,6 @@ fn pi_is_predefined_unless_the_spec_names_it() {
     };
     let system = ExpressionSystem::<1>::new(&spec(vec![])).unwrap();
     assert_eq!(system.lagrangian(&[0.0], &[1.0]), std::f64::consts::PI);
-    let system = ExpressionSystem::<1>::new(&spec(vec![("pi".into(), 3.0)])).unwrap();
-    assert_eq!(system.lagrangian(&[0.0], &[1.0]), 3.0);
+    let refused = ExpressionSystem::<1>::new(&spec(vec![("pi".into(), 3.0)]));
+    assert!(matches!(refused.err(), Some(ddirac::expression::ExpressionError::InvalidName { .. })));
 }

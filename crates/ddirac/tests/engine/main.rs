@@ -10,6 +10,8 @@ mod chain_text;
 mod common;
 #[path = "../common/pendulum_text.rs"]
 mod pendulum_text;
+#[path = "../common/spherical_pendulum_text.rs"]
+mod spherical_pendulum_text;
 
 mod atlas;
 mod baselines;
@@ -40,6 +42,13 @@ mod issue_13_pole_passage_is_named;
 mod issue_13_pole_passages_switch_charts;
 mod issue_14_failed_steps_are_subdivided;
 mod issue_14_long_step_leaves_the_chart;
+mod issue_30_atlas_never_used_is_refused;
+mod issue_30_chart_maps_not_inverse_are_refused;
+mod issue_30_check_and_run_agree_on_charts;
+mod issue_30_energy_watch_spans_chart_switches;
+mod issue_30_loose_tolerance_never_accepts_the_predictor;
+mod issue_30_pi_is_not_a_name;
+mod issue_30_unresolved_pole_passage_warns;
 mod kepler_and_top;
 mod legendre_velocity_stops_at_round_off;
 mod minus_variant;

@@ -3,9 +3,15 @@
 //! §6), the connection axioms (Definition 2.1), the regularity of the Legendre transform and whether
 //! the initial momentum lies on the primary constraint p = ∂L/∂v.
 //!
+//! With an atlas, each chart is tested too ([`charts`]): its maps inverse on its domain, its quality
+//! honest about where its Legendre map is regular, its group coordinates symmetries and its angles
+//! periods of L.
+//!
 //! [`check`] reports the findings; [`CheckReport::verdict`] says what a run of a method makes of
-//! them. [`crate::Stepper::new`] calls both before its first step, so a run refuses exactly what the
-//! check refuses, with the same error.
+//! them. [`crate::Stepper::new`] calls the same tests and verdicts before its first step, so a run
+//! refuses exactly what the check refuses, with the same error.
+
+mod charts;
 
 use crate::diagnostics::{Warning, WarningKind};
 use crate::dim::Dim;
@@ -16,6 +22,9 @@ use crate::reduction::invariance::{invariance_deviations, INVARIANCE_TOLERANCE};
 use crate::sampling::{self, Deviation, ENOUGH};
 use crate::stepper::Setup;
 use crate::{DiscreteLagrangian, Error, Hypothesis, InitialMomentum, Method, Problem};
+
+pub(crate) use charts::atlas_verdict;
+pub use charts::{ChartFinding, ROUND_TRIP_TOLERANCE};
 
 /// Relative tolerance of the primary-constraint check.
 pub const CONSTRAINT_TOLERANCE: f64 = 1e-8;
@@ -76,6 +85,8 @@ pub struct CheckReport {
     pub p0_scale: f64,
     /// Whether the initial momentum was given as a velocity (then it is consistent by construction).
     pub momentum_from_velocity: bool,
+    /// The tests of each chart of the atlas after the main one (empty without an atlas).
+    pub charts: Vec<ChartFinding>,
 }
 
 impl CheckReport {
@@ -159,6 +170,7 @@ impl CheckReport {
                 mismatch: self.constraint_mismatch,
             });
         }
+        charts::verdict(&self.charts, method, &mut warnings)?;
         Ok(warnings)
     }
 
@@ -187,7 +199,9 @@ impl CheckReport {
 pub fn check<S: SystemIn<Dm>, Dm: Dim>(system: &S, problem: &Problem, method: &Method) -> Result<CheckReport, Error> {
     crate::stack::enough(system.dim(), || {
         let setup = Setup::new(system, problem, method)?;
-        Ok(findings(system, problem, method, &setup))
+        let mut report = findings(system, problem, method, &setup);
+        report.charts = charts::chart_findings(system, problem, method.rule, charts::main_regular(system, problem));
+        Ok(report)
     })
 }
 
@@ -220,5 +234,6 @@ pub(crate) fn findings<S: SystemIn<Dm>, Dm: Dim>(
         constraint_mismatch,
         p0_scale: setup.p0.as_ref().iter().fold(0.0f64, |m, v| m.max(v.abs())),
         momentum_from_velocity: matches!(problem.initial, InitialMomentum::Velocity(_)),
+        charts: vec![],
     }
 }
