@@ -62,7 +62,7 @@ impl<Dm: Dim> Resolution<Dm> {
         let relative_change = self.changes / self.sizes;
         let truncation = size * relative_change.powi(i32::from(order));
         let allowed = tolerance * (1.0 + size);
-        if !(allowed > LOOSE_TOLERANCE_MARGIN * truncation) {
+        if !truncation.is_finite() || allowed <= LOOSE_TOLERANCE_MARGIN * truncation {
             return None;
         }
         let suggested = 10f64.powf(truncation.max(ROUND_OFF).log10().floor());
