@@ -157,3 +157,14 @@ def test_check_emits_the_warnings_a_run_would_have():
     (entry,) = report["verdict"]["warnings"]
     assert entry["kind"] == "not_invariant" and entry["message"] in str(w.message)
     assert "before the first step" in str(w.message) and w.filename == __file__
+
+
+def test_the_readme_snippet_that_filters_and_escalates_runs_as_written():
+    readme = (pathlib.Path(__file__).resolve().parents[2] / "README.md").read_text()
+    after = readme.split("Filter or escalate them as any warning:", 1)[1]
+    snippet = after.split("```python\n", 1)[1].split("```", 1)[0]
+    with warnings.catch_warnings():
+        exec(snippet, {"ddirac": ddirac})
+        # Escalated: a warned run raises; the silenced kind alone would not.
+        with pytest.raises(ddirac.RunWarning):
+            _falling_straight_in()

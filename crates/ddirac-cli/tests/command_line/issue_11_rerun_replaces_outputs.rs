@@ -9,23 +9,11 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::Output;
 
-use common::{ddirac, example, TempDir};
+use common::{ddirac, example, files_under, TempDir};
 
 /// Every file under `dir`, as paths relative to it.
 fn files(dir: &Path) -> BTreeSet<String> {
-    let mut found = BTreeSet::new();
-    let mut stack = vec![dir.to_owned()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-            } else {
-                found.insert(path.strip_prefix(dir).unwrap().to_string_lossy().replace('\\', "/"));
-            }
-        }
-    }
-    found
+    files_under(dir)
 }
 
 fn run(dir: &TempDir, args: &[&str]) -> Output {

@@ -7,7 +7,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{ddirac, example, stderr, TempDir};
+use common::{ddirac, example, files_under, stderr, TempDir};
 
 const ENSEMBLE: &str = r#"
 [ensemble]
@@ -64,21 +64,8 @@ fn merge(shards: &Path, out: &Path, cwd: &Path) -> std::process::Output {
 }
 
 /// The files under `dir`, with their contents, sorted by path.
-fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut all = vec![];
-    let mut stack = vec![dir.to_owned()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-            } else {
-                all.push((path.strip_prefix(dir).unwrap().to_owned(), std::fs::read(&path).unwrap()));
-            }
-        }
-    }
-    all.sort();
-    all
+fn files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    files_under(dir).into_iter().map(|f| (f.clone(), std::fs::read(dir.join(&f)).unwrap())).collect()
 }
 
 /// Copies the intact shards, damages the copy with `damage` (given the copy's directory), and

@@ -170,3 +170,20 @@ pub fn line<'a>(report: &'a str, key: &str) -> &'a str {
 pub fn summary(dir: &TempDir) -> Value {
     serde_json::from_str(&std::fs::read_to_string(dir.out().join("summary.json")).unwrap()).unwrap()
 }
+
+/// Every file under `dir`, as paths relative to it ('/'-separated), sorted.
+pub fn files_under(dir: &Path) -> std::collections::BTreeSet<String> {
+    let mut found = std::collections::BTreeSet::new();
+    let mut stack = vec![dir.to_owned()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                found.insert(path.strip_prefix(dir).unwrap().to_string_lossy().replace('\\', "/"));
+            }
+        }
+    }
+    found
+}
