@@ -71,9 +71,7 @@ def entry(name, obj):
     lines = []
     if inspect.isclass(obj):
         bases = [b.__name__ for b in obj.__bases__ if b is not object]
-        kind = "exception" if issubclass(obj, BaseException) else "warning" if issubclass(obj, Warning) else "class"
-        if issubclass(obj, Warning):
-            kind = "warning"
+        kind = "warning" if issubclass(obj, Warning) else "exception" if issubclass(obj, BaseException) else "class"
         lines.append(f"## `{name}`\n")
         head = signature(f"ddirac.{name}", obj) if kind == "class" else f"ddirac.{name}"
         lines.append(f"```text\n{kind} {head}" + (f"  ({', '.join(bases)})" if bases else "") + "\n```\n")
