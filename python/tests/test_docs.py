@@ -276,6 +276,25 @@ def test_the_readme_is_a_landing_page_with_the_commands_ci_runs():
         assert command in readme, command
 
 
+@pytest.mark.parametrize("page", ["README.md", "docs/getting-started.md"])
+def test_the_cost_of_each_build_is_stated_before_its_command(page):
+    """A reader learns what a build costs before running it: the paragraph before the block of each
+    command that compiles names the time it takes, and `pip install -v .` is suggested to see progress."""
+    path = REPO / page
+    lines = path.read_text(encoding="utf-8").splitlines()
+    compiling = ("cargo run --release -p ddirac-cli", "scripts/test.sh", "pip install -v .")
+    seen = set()
+    for block in blocks(path):
+        if block.language not in SHELL:
+            continue
+        for command in compiling:
+            if any(c.strip().startswith(command) for c in block.text.splitlines()):
+                before = " ".join(lines[max(0, block.line - 9):block.line - 1])
+                assert "minute" in before, f"{page}:{block.line}: no cost stated before `{command}`"
+                seen.add(command)
+    assert seen == set(compiling), seen
+
+
 def test_the_python_api_reference_is_current():
     sys.path.insert(0, str(REPO / "scripts"))
     try:
