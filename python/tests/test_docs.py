@@ -319,3 +319,20 @@ if __name__ == "__main__":
     print(f"{'page':<{width}}  run  excerpt  not-run  not-code  error")
     for page, c in inventory().items():
         print(f"{page:<{width}}  {c['run']:>3}  {c['excerpt']:>7}  {c['not run']:>7}  {c['not code']:>8}  {c['error']:>5}")
+
+
+def test_the_harness_refuses_blocks_it_would_silently_skip(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text(
+        "```sh\npip install .\n```\n\n"
+        "<!-- not run: it installs -->\n```sh\npip install .\n```\n\n"
+        "```\nno language\n```\n\n"
+        "```rust\nfn main() {}\n```\n\n"
+        "```console\n$ ddirac systems\nsome output\n```\n\n"
+        "```sh\ncargo run --release -p ddirac-cli --features dop853 -- bench\n```\n\n"
+        "```text\n$ anything\n```\n",
+        encoding="utf-8",
+    )
+    found = [b.disposition().split(":")[0] for b in blocks(page)]
+    assert found == ["error", "not run", "error", "error", "run", "error", "not code"]
+    assert shell_commands(blocks(page)[4]) == ["ddirac systems"]
