@@ -12,12 +12,14 @@ class ExpressionError(Error):
     origin: Optional[str]
     text: Optional[str]
     span: Optional[tuple[int, int]]
+    help: Optional[str]
 
 class InvarianceError(Error): ...
 
 class ConvergenceError(Error):
     step: int
     t: float
+    h: float
     residual: Optional[float]
 
 class SystemHandle:
@@ -30,6 +32,7 @@ class LoadedSpec:
     name: str
     parameters: list[tuple[str, float]]
     directory: PathLike[str]
+    notes: list[str]
     @property
     def system(self) -> SystemHandle: ...
     @property

@@ -106,7 +106,7 @@ pub fn text_system(
             order.iter().map(|o| declared.iter().find(|(n, _)| n == o).cloned().expect("a permutation")).collect()
         }
     };
-    let coordinates = ordered
+    let coordinates: Vec<Coordinate> = ordered
         .into_iter()
         .map(|(n, role)| {
             let c = match role {
@@ -123,6 +123,14 @@ pub fn text_system(
     let mut sources = vec![("lagrangian".to_owned(), lagrangian.clone())];
     sources.extend(definitions.iter().map(|(n, v)| (format!("definition:{n}"), v.clone())));
     sources.extend(exact.iter().map(|(n, v)| (format!("exact:{n}"), v.clone())));
+    let coordinate_names: Vec<String> = coordinates.iter().map(|c| c.name.clone()).collect();
+    let parameter_names: Vec<String> = parameters.iter().map(|(n, _)| n.clone()).collect();
+    let definition_names: Vec<String> = definitions.iter().map(|(n, _)| n.clone()).collect();
+    let declared = crate::error::Declared {
+        coordinates: &coordinate_names,
+        parameters: &parameter_names,
+        definitions: &definition_names,
+    };
     let spec = ExpressionSpec {
         coordinates,
         lagrangian,
@@ -131,6 +139,6 @@ pub fn text_system(
         exact_solution: exact,
         ..ExpressionSpec::default()
     };
-    let inner = spec.into_dyn().map_err(|e| crate::error::expression(e, &sources))?;
+    let inner = spec.into_dyn().map_err(|e| crate::error::expression(e, &sources, &declared))?;
     Ok(SystemHandle { inner: Arc::from(inner), name: name.unwrap_or_else(|| "custom".to_owned()), parameters })
 }
