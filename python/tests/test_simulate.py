@@ -129,7 +129,7 @@ def test_bad_input_raises_ddirac_error_naming_the_cause(call, message):
 
 def test_a_failed_step_raises_with_the_step_and_time():
     # A step far too long for Newton's method with one iteration.
-    with pytest.raises(ddirac.Error, match=r"step 0 \(t = 0\)"):
+    with pytest.raises(ddirac.Error, match=r"step 0 \(t = 0, h = 0.01\)"):
         ddirac.simulate(ddirac.System.builtin("double_spherical_pendulum"), q0=[0, 2.25, 2, 3], p0=[0, 0, 1, 1],
                         step=0.01, steps=10, max_iterations=1, tolerance=1e-16)
 

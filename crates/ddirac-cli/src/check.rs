@@ -28,7 +28,9 @@ pub struct CheckOptions {
 
 /// Checks a spec, prints the report, and fails when a run would be refused.
 pub fn check(options: &CheckOptions) -> Result<(), CliError> {
-    let Loaded { source, plan, .. } = run::load(&options.spec, &options.set)?;
+    let loaded = run::load(&options.spec, &options.set)?;
+    loaded.print_notes();
+    let Loaded { source, plan, .. } = loaded;
     let located = |error: ddirac::Error| match plan.spans.diagnostic(&source, &error) {
         Some(diagnostic) => CliError::Spec(diagnostic),
         None => CliError::Integration(error),

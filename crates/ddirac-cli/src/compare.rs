@@ -29,7 +29,9 @@ const RUNS: [&str; 2] = ["reduced", "unreduced"];
 
 /// Runs `options.spec` reduced and unreduced and compares them.
 pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
-    let Loaded { source, spec, mut plan } = run::load(&options.spec, &options.set)?;
+    let loaded = run::load(&options.spec, &options.set)?;
+    loaded.print_notes();
+    let Loaded { source, spec, mut plan, .. } = loaded;
     let formats =
         output::Formats::choose(&options.format, spec.output.format.as_ref(), &source).map_err(CliError::from)?;
     let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);

@@ -130,7 +130,9 @@ pub struct Stability {
 /// Runs the convergence study and prints its table.
 pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     let started = Instant::now();
-    let Loaded { plan, .. } = run::load(&options.spec, &options.set)?;
+    let loaded = run::load(&options.spec, &options.set)?;
+    loaded.print_notes();
+    let Loaded { plan, .. } = loaded;
     let mut plan = plan;
     let mut steps = options.steps.clone();
     steps.sort_unstable();

@@ -127,6 +127,7 @@ impl StatsJson {
 struct MomentumMapJson<'a> {
     initial: &'a [f64],
     max_drift: f64,
+    scale: f64,
     max_relative_drift: Option<f64>,
 }
 
@@ -187,6 +188,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         momentum_map: MomentumMapJson {
             initial: &summary.momentum_map.initial,
             max_drift: summary.momentum_map.max_drift,
+            scale: summary.momentum_map.scale,
             max_relative_drift: summary.momentum_map.max_relative_drift,
         },
         derivatives: summary.derivatives.to_string(),
@@ -275,11 +277,15 @@ fn charts(plan: &Plan, summary: &Summary) -> String {
     }
 }
 
-/// The momentum-map line; the relative drift is undefined when J_0 = 0, so it is left out then.
+/// The momentum-map line: the drift, and relative to what (the larger of ‖J_0‖∞ and the run's
+/// largest momentum, so that J_0 = 0 has a scale too).
 fn momentum_map(j: &ddirac::diagnostics::MomentumMapDrift) -> String {
     match j.max_relative_drift {
-        Some(relative) => format!("  momentum map     drift {:.3e} (relative {relative:.3e})", j.max_drift),
-        None => format!("  momentum map     drift {:.3e} (J_0 = 0)", j.max_drift),
+        Some(relative) => format!(
+            "  momentum map     drift {:.3e} (relative {relative:.3e} to {:.3e}, the largest of |J_0| and the momenta)",
+            j.max_drift, j.scale
+        ),
+        None => format!("  momentum map     drift {:.3e} (every momentum is 0)", j.max_drift),
     }
 }
 

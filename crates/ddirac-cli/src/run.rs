@@ -33,7 +33,9 @@ pub struct RunOptions {
 pub fn run(options: &RunOptions) -> Result<(), CliError> {
     let started = Instant::now();
     let path = &options.spec;
-    let Loaded { source, spec, plan } = load(path, &options.set)?;
+    let loaded = load(path, &options.set)?;
+    loaded.print_notes();
+    let Loaded { source, spec, plan, .. } = loaded;
     let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
 
     let dir = output_dir(options.out.as_deref(), &plan, path);
@@ -57,6 +59,18 @@ pub struct Loaded {
     pub spec: spec::Spec,
     /// The validated spec.
     pub plan: spec::Plan,
+    /// What the overrides did that the user may not expect (a step h changed by overriding another
+    /// key of `[time]`), for the commands to print before they run.
+    pub notes: Vec<String>,
+}
+
+impl Loaded {
+    /// Prints the notes on stderr, each as `note: …`.
+    pub fn print_notes(&self) {
+        for note in &self.notes {
+            eprintln!("note: {note}");
+        }
+    }
 }
 
 /// Reads the spec at `path`, applies `set` and validates it.
@@ -91,7 +105,7 @@ pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<Loaded, Cl
         }
     }
     let source = if edits.is_empty() {
-        original
+        original.clone()
     } else {
         let edited = overrides::apply(&original, &edits)?;
         SpecSource::new(format!("{} (with --set)", path.display()), edited)
@@ -105,7 +119,13 @@ pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<Loaded, Cl
         initial_entries::apply(&mut plan.problem, &names, &list, &values)
             .map_err(|why| CliError::Set { arg: entries[0].0.clone(), why })?;
     }
-    Ok(Loaded { source, spec, plan })
+    let time_keys: Vec<&str> = edits
+        .iter()
+        .filter_map(|e| e.split_once('=')?.0.trim().strip_prefix("time."))
+        .map(|key| key.trim_matches(|c| c == '"' || c == ' '))
+        .collect();
+    let notes = spec::changed_step(&original, &source, &time_keys).into_iter().collect();
+    Ok(Loaded { source, spec, plan, notes })
 }
 
 /// The output directory: `--out`, else `output.directory` of the spec, else `out/<spec file stem>`.

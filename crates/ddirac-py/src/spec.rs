@@ -52,12 +52,16 @@ pub struct LoadedSpec {
     /// Where `ddirac run` would write it.
     #[pyo3(get)]
     directory: PathBuf,
+    /// What the overrides did that the user may not expect (the step h that overriding another key
+    /// of `[time]` gives), as `ddirac run` prints them as `note: …`.
+    #[pyo3(get)]
+    notes: Vec<String>,
 }
 
 /// Reads the spec at `path` with the `--set` assignments `set`, as `ddirac run` does.
 #[pyfunction]
 pub fn load_spec(path: PathBuf, set: Vec<String>) -> PyResult<LoadedSpec> {
-    let Loaded { plan, .. } = run::load(&path, &set).map_err(cli_error)?;
+    let Loaded { plan, notes, .. } = run::load(&path, &set).map_err(cli_error)?;
     let directory = run::output_dir(None, &plan, &path);
     Ok(LoadedSpec {
         path,
@@ -69,6 +73,7 @@ pub fn load_spec(path: PathBuf, set: Vec<String>) -> PyResult<LoadedSpec> {
         method: plan.method,
         output: plan.output,
         directory,
+        notes,
     })
 }
 

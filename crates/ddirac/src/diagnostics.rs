@@ -71,13 +71,20 @@ impl Accumulator {
 }
 
 /// The momentum map's first value and its largest deviation from it.
+///
+/// The deviation is measured against the size of the momenta it is computed from: J is a sum of
+/// momenta, so its round-off is relative to them, and a conserved J_0 = 0 among momenta of size 10⁵
+/// is kept to within 10⁵ ε, not to within a relative error of J_0.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MomentumMapDrift {
     /// J(q0, p0).
     pub initial: Vec<f64>,
     /// max_k ‖J_k − J_0‖∞ over all steps.
     pub max_drift: f64,
-    /// `max_drift / ‖J_0‖∞`; `None` when J_0 = 0.
+    /// The size the drift is measured against: the larger of ‖J_0‖∞ and the largest momentum |p_i|
+    /// of any step.
+    pub scale: f64,
+    /// `max_drift / scale`; `None` when every momentum of the run is 0.
     pub max_relative_drift: Option<f64>,
 }
 

@@ -36,14 +36,16 @@ pub enum Error {
     },
     /// Newton's method failed on a step.
     #[error(
-        "step {step} (t = {}): Newton's method failed after {iterations} iteration(s): {reason} \
-         (residual {residual:.3e}); {}", Time(*t), cause.as_deref().unwrap_or(reason.hint())
+        "step {step} (t = {}, h = {}): Newton's method failed after {iterations} iteration(s): {reason} \
+         (residual {residual:.3e}); {}", Time(*t), Time(*h), cause.as_deref().unwrap_or(reason.hint())
     )]
     Newton {
         /// Index k of the step q_k → q_{k+1}.
         step: usize,
         /// Time t_k.
         t: f64,
+        /// The run's step h.
+        h: f64,
         /// Corrections taken.
         iterations: usize,
         /// Last residual norm.
@@ -55,12 +57,14 @@ pub enum Error {
         cause: Option<String>,
     },
     /// The state became NaN or infinite.
-    #[error("step {step} (t = {}): the {what} became non-finite", Time(*t))]
+    #[error("step {step} (t = {}, h = {}): the {what} became non-finite", Time(*t), Time(*h))]
     Diverged {
         /// Index k of the step.
         step: usize,
         /// Time t_k.
         t: f64,
+        /// The run's step h.
+        h: f64,
         /// Which quantity.
         what: &'static str,
     },
@@ -123,12 +127,14 @@ pub enum Error {
     },
     /// The energy of a step jumped (see [`crate::diagnostics::WarningKind::EnergyJump`]) and the
     /// method asks for this to be an error.
-    #[error("step {step} (t = {}): {message}", Time(*t))]
+    #[error("step {step} (t = {}, h = {}): {message}", Time(*t), Time(*h))]
     EnergyJump {
         /// Index k of the step.
         step: usize,
         /// Time t_k.
         t: f64,
+        /// The run's step h.
+        h: f64,
         /// What jumped, by how much.
         message: String,
     },

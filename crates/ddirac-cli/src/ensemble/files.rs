@@ -125,6 +125,7 @@ pub fn command(options: &Options) -> Result<(), CliError> {
     let started = Instant::now();
     let from = options.members.clone().map_or(MembersFrom::Spec, MembersFrom::File);
     let ensemble = Ensemble::load(&options.spec, &options.set, from)?;
+    ensemble.base.print_notes();
     let total = ensemble.members.len();
     let (range, shard) = match options.shard {
         Some((index, count)) => {

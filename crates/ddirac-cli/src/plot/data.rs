@@ -30,6 +30,9 @@ pub struct RunSummary {
     pub wrapped: Vec<String>,
     /// One line on the run: steps, step, rule, variant, reduced or not.
     pub description: String,
+    /// The scale the momentum map's drift is measured against (`momentum_map.scale`: the larger of
+    /// ‖J₀‖∞ and the run's largest momentum), when the summary gives a positive one.
+    pub momentum_scale: Option<f64>,
 }
 
 impl RunSummary {
@@ -65,7 +68,8 @@ impl RunSummary {
             text(&method["variant"]),
             if method["reduced"].as_bool().unwrap_or(false) { "reduced" } else { "unreduced" },
         );
-        Ok(Self { system, parameters, coordinates, wrapped, description })
+        let momentum_scale = json["momentum_map"]["scale"].as_f64().filter(|s| s.is_finite() && *s > 0.0);
+        Ok(Self { system, parameters, coordinates, wrapped, description, momentum_scale })
     }
 
     /// Whether the coordinate `name` is an angle written wrapped to (−π, π].

@@ -5,7 +5,8 @@
 //! - `exact_path`: where the exact motion is known for two coordinates or more, the computed and the
 //!   exact path in the plane of the first two (the paper's §7.1 figure for the charged particle);
 //! - `energy_error`: (H − H₀)/|H₀| against time (H − H₀ when H₀ = 0);
-//! - `momentum_map`: J − J₀ for each group coordinate (only for systems with a symmetry);
+//! - `momentum_map`: (J − J₀)/s for each group coordinate (only for systems with a symmetry), s the
+//!   summary's scale of the momenta (J − J₀ for a summary without one);
 //! - `discrete_energy`: L_d(q_k, q_{k+1}) against t_k, the paper's "discrete energy";
 //!
 //! and for the double spherical pendulum the paper's figures (§7.2):
@@ -165,14 +166,27 @@ pub fn run_figures(summary: &RunSummary, trajectory: &TrajectoryFile, exact: &Ex
     }
 
     if !momentum.is_empty() {
+        // Relative to the momenta's size, as the summary reports it: a drift of 1e-9 means nothing
+        // until it is set against momenta of 1 or of 10⁶.
+        let scale = summary.momentum_scale.unwrap_or(1.0);
         let series = trajectory
             .group
             .iter()
             .zip(momentum)
-            .map(|(g, envelope)| Series::named(format!("J_{g} − J_{g}(0)"), envelope.finish()))
+            .map(|(g, envelope)| {
+                let points = envelope.finish().into_iter().map(|(t, j)| (t, j / scale)).collect();
+                Series::named(format!("J_{g} − J_{g}(0)"), points)
+            })
             .collect();
-        let panel = Panel::new("t", "J − J₀", series);
-        figures.push(titled("momentum_map", format!("{system}: momentum map drift"), vec![panel]));
+        let (label, title) = match summary.momentum_scale {
+            Some(s) => (
+                "(J − J₀)/s".to_owned(),
+                format!("{system}: momentum map drift relative to s = {s:.3e}, the largest of |J₀| and the momenta"),
+            ),
+            None => ("J − J₀".to_owned(), format!("{system}: momentum map drift")),
+        };
+        let panel = Panel::new("t", label.as_str(), series);
+        figures.push(titled("momentum_map", title, vec![panel]));
     }
 
     if has_discrete_energy {

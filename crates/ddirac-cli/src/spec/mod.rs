@@ -34,6 +34,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use toml::Spanned;
 
+pub use time::changed_step;
 pub use validate::{validate, Plan};
 
 use crate::diagnostics::{SpecError, SpecSource};

@@ -140,6 +140,35 @@ pub fn grid(source: &SpecSource, time: &Spanned<TimeSpec>) -> Result<(f64, usize
     }
 }
 
+/// What overriding keys of `[time]` did to the step: a note when the step h of the spec `edited`
+/// differs from that of the spec `original` although `time.step` was not among the overridden
+/// `keys` — say `time.duration` of a spec that gives `steps` and `duration`, which keeps N and so
+/// scales h. `None` when h is unchanged, or either spec has no valid grid.
+pub fn changed_step(original: &SpecSource, edited: &SpecSource, keys: &[&str]) -> Option<String> {
+    if keys.contains(&"step") || keys.is_empty() {
+        return None;
+    }
+    let (h0, n0) = grid(original, &super::parse(original).ok()?.time).ok()?;
+    let (h, n) = grid(edited, &super::parse(edited).ok()?.time).ok()?;
+    if (h - h0).abs() <= 1e-12 * h0 {
+        return None;
+    }
+    let set: Vec<String> = keys.iter().map(|k| format!("`time.{k}`")).collect();
+    let duration = h * n as f64;
+    let mut note = format!(
+        "overriding {} makes the step h = {} ({n} steps over a duration of {}); the spec's own step is h = {}          ({n0} steps)",
+        set.join(" and "),
+        number(h),
+        number(duration),
+        number(h0)
+    );
+    let keep = (duration / h0).round();
+    if keep >= 1.0 && keep <= MAX_STEPS as f64 && ((keep * h0 - duration) / duration).abs() <= INTEGER_TOLERANCE {
+        note.push_str(&format!("; to keep h = {}, set `time.steps={keep}` as well", number(h0)));
+    }
+    Some(note)
+}
+
 /// The error of a grid of `count` steps, more than [`MAX_STEPS`].
 fn too_many(source: &SpecSource, labels: Vec<Option<LabeledSpan>>, count: String) -> Box<SpecError> {
     source

@@ -126,7 +126,7 @@ fn reduction_without_a_group_coordinate_would_be_refused() {
 #[test]
 fn spec_errors_fail_before_any_report() {
     let dir = TempDir::new("check-error");
-    let output = check(&example("kepler.toml"), &["system.lagrangian=\"0.5*m*r_dot^2 + k/q\""], &dir);
+    let output = check(&example("kepler_expression.toml"), &["system.lagrangian=\"0.5*m*r_dot^2 + k/q\""], &dir);
     assert!(!output.status.success());
     assert!(stdout(&output).is_empty(), "{}", stdout(&output));
     assert!(stderr(&output).contains("unknown name `q`"), "{}", stderr(&output));

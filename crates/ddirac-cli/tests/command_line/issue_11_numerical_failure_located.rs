@@ -13,7 +13,7 @@ fn a_newton_failure_points_at_the_time_grid_and_the_tolerance() {
     let stderr = assert_fails(
         &run(&example("kepler.toml"), &["method.max_iterations=1", "method.tolerance=1e-15"], &dir),
         &dir,
-        &["Newton's method failed", "step 0 (t = 0)"],
+        &["Newton's method failed", "step 0 (t = 0, h = 0.002)"],
     );
     assert!(stderr.contains("this time grid"), "{stderr}");
     assert!(stderr.contains("Newton tolerance"), "{stderr}");

@@ -48,7 +48,10 @@ fn stepping_over_a_singular_potential_warns_at_the_step() {
     let stderr = assert_fails(
         &run(&spec, &["method.on_energy_jump=\"error\""], &dir),
         &dir,
-        &[&format!("step {} (t = {})", crossing - 1, ddirac::Time(0.1 * (crossing - 1) as f64)), "the energy jumped"],
+        &[
+            &format!("step {} (t = {}, h = 0.1)", crossing - 1, ddirac::Time(0.1 * (crossing - 1) as f64)),
+            "the energy jumped",
+        ],
     );
     assert!(stderr.contains("this time grid"), "{stderr}");
 }

@@ -462,7 +462,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         let (k, config, momenta) = (progress.k, &progress.config, &progress.momenta);
         let (mut monitor, mut record) = (progress.monitor.clone(), progress.record.clone());
         if let Some(jump) = monitor.finish() {
-            jumped(jump, None, self.context.method.energy_jump.action, &mut record.warnings)?;
+            jumped(jump, None, self.context.method.energy_jump.action, self.context.h, &mut record.warnings)?;
         }
         let method = &self.context.method;
         if let Some(message) = record.resolution.loose(method.newton.tolerance, method.composition.order()) {
@@ -476,7 +476,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
                 let unwrapped = config.unwrapped();
                 reference_error(exact.as_ref(), unwrapped.as_ref())
             });
-        let j_scale = record.j0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let j_scale = record.j0.iter().fold(record.momentum_scale, |m, v| m.max(v.abs()));
         Ok(Summary {
             coordinates: self.context.system.coordinates().as_ref().iter().map(|c| c.name.clone()).collect(),
             steps: k - k0,
@@ -489,6 +489,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
                 max_relative_drift: (j_scale > 0.0).then(|| record.max_drift / j_scale),
                 initial: record.j0.clone(),
                 max_drift: record.max_drift,
+                scale: j_scale,
             },
             newton: record.newton,
             derivatives: self.derivative_path.clone(),

@@ -55,6 +55,8 @@ pub(super) struct Record<Dm: Dim> {
     /// The momentum map at the start.
     pub(super) j0: Vec<f64>,
     pub(super) max_drift: f64,
+    /// The largest |p_i| (or trivialized momentum) of any step: the momentum map's scale.
+    pub(super) momentum_scale: f64,
     pub(super) energy: Accumulator,
     pub(super) discrete_energy: Accumulator,
     pub(super) newton: NewtonSummary,
@@ -99,6 +101,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
             start: self.start.clone(),
             j0: self.j0.clone(),
             max_drift: self.max_drift,
+            momentum_scale: self.momentum_scale,
             energy: self.energy,
             discrete_energy: self.discrete_energy,
             newton: self.newton,
@@ -111,6 +114,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
         self.start.clone_from(&source.start);
         self.j0.clone_from(&source.j0);
         self.max_drift = source.max_drift;
+        self.momentum_scale = source.momentum_scale;
         self.energy = source.energy;
         self.discrete_energy = source.discrete_energy;
         self.newton = source.newton;
@@ -120,10 +124,12 @@ impl<Dm: Dim> Clone for Record<Dm> {
 }
 
 impl<Dm: Dim> Record<Dm> {
-    /// Folds the momentum map of the scheme `momenta` into the largest drift.
+    /// Folds the momentum map of the scheme `momenta` into the largest drift, and the momenta into
+    /// its scale.
     pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>) {
         let j = split.momentum_map(momenta.as_ref());
         self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
+        self.momentum_scale = momenta.as_ref().iter().fold(self.momentum_scale, |m, p| m.max(p.abs()));
     }
 }
 
@@ -185,6 +191,7 @@ impl<Dm: Dim> Progress<Dm> {
             start,
             j0: split.momentum_map(p.as_ref()).collect(),
             max_drift: 0.0,
+            momentum_scale: 0.0,
             energy: Accumulator::default(),
             discrete_energy: Accumulator::default(),
             newton: NewtonSummary::default(),
@@ -320,10 +327,10 @@ impl<Dm: Dim> Progress<Dm> {
             return Ok(solved);
         }
         Err(match failure {
-            Error::Newton { step, t, iterations, residual, reason, cause } => {
+            Error::Newton { step, t, h, iterations, residual, reason, cause } => {
                 let tried = format!("nor as 2, 4, …, {MAX_SUBDIVISION} sub-steps");
                 let cause = Some(cause.map_or(tried.clone(), |c| format!("{c}; {tried}")));
-                Error::Newton { step, t, iterations, residual, reason, cause }
+                Error::Newton { step, t, h, iterations, residual, reason, cause }
             }
             other => other,
         })
@@ -345,7 +352,7 @@ impl<Dm: Dim> Progress<Dm> {
                 .map_err(|f| newton_failed(context, k, self.config.base(), &e.scheme, &memory.predictor, f))?;
         let dq = e.scheme.increment(&z);
         if dq.as_ref().iter().chain(momenta_next.as_ref()).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
-            return Err(Error::Diverged { step: k, t, what: "state" });
+            return Err(Error::Diverged { step: k, t, h, what: "state" });
         }
         let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
             let p_next = e.scheme.p_from_momenta(&momenta_next);
@@ -385,7 +392,7 @@ impl<Dm: Dim> Progress<Dm> {
             let dq = e.scheme.increment(&solved.z);
             let finite = dq.as_ref().iter().chain(solved.momenta_next.as_ref()).all(|v| v.is_finite());
             if !finite || !solved.discrete_energy.is_finite() {
-                return Err(Error::Diverged { step: k, t, what: "state" });
+                return Err(Error::Diverged { step: k, t, h, what: "state" });
             }
             if watching {
                 let p_next = e.scheme.p_from_momenta(&solved.momenta_next);
@@ -471,7 +478,7 @@ impl<Dm: Dim> Progress<Dm> {
             record.warnings.push(Warning::new(WarningKind::EnergyDrift, Some(drift.at), drift.describe()));
         }
         if let Some((jump, cause)) = jump {
-            jumped(jump, cause, action, &mut record.warnings)?;
+            jumped(jump, cause, action, context.h, &mut record.warnings)?;
         }
         Ok(StepReport { k, discrete_energy, newton: stats })
     }
@@ -548,6 +555,7 @@ pub(super) fn jumped(
     jump: Jump,
     cause: Option<String>,
     action: JumpAction,
+    h: f64,
     warnings: &mut Warnings,
 ) -> Result<(), Error> {
     let message = match cause {
@@ -556,7 +564,7 @@ pub(super) fn jumped(
     };
     if action == JumpAction::Fail {
         let (step, t) = jump.at;
-        return Err(Error::EnergyJump { step, t, message });
+        return Err(Error::EnergyJump { step, t, h, message });
     }
     warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), message));
     Ok(())
@@ -591,7 +599,7 @@ fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
         relative * 100.0,
         IMPLAUSIBLE_ENERGY_CHANGE * 100.0
     );
-    Error::EnergyJump { step: k, t: k as f64 * h, message }
+    Error::EnergyJump { step: k, t: k as f64 * h, h, message }
 }
 
 /// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the
@@ -607,8 +615,8 @@ fn newton_failed<S: SystemIn<Dm>, Sc: Scheme<Dm>, Dm: Dim>(
 ) -> Error {
     let predicted = scheme.increment(&predictor.predict());
     let cause = singular_chart(context, q, &predicted);
-    let t = k as f64 * context.h;
-    Error::Newton { step: k, t, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
+    let (h, t) = (context.h, k as f64 * context.h);
+    Error::Newton { step: k, t, h, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
 }
 
 /// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.
