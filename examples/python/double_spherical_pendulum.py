@@ -2,8 +2,13 @@
 discrete energy L_d of both and their difference, and the path of the second bob, with Matplotlib.
 
     pip install . matplotlib      # from the repository's root
-    python examples/python/double_spherical_pendulum.py    # writes double_spherical_pendulum.png
+    python examples/python/double_spherical_pendulum.py [--out DIR]   # writes DIR/double_spherical_pendulum.png
+
+The figure goes into the directory ``--out`` (default ``out``, made if missing); the script prints its path.
 """
+
+import argparse
+from pathlib import Path
 
 import matplotlib
 
@@ -12,6 +17,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import ddirac  # noqa: E402
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("--out", default="out", help="the directory of the figure (default: out)")
+args = parser.parse_args()
+figure = Path(args.out) / "double_spherical_pendulum.png"
 
 dsp = ddirac.System.builtin("double_spherical_pendulum")
 common = dict(q0=[0, 2.25, 2, 3], p0=[0, 0, 1, 1], step=0.01, steps=10_000, rule="midpoint")
@@ -39,5 +49,6 @@ axes[1, 0].set(xlabel="t", ylabel="difference", title="L_d reduced − L_d unred
 axes[1, 1].plot(x, y, lw=0.5)
 axes[1, 1].set(xlabel="x", ylabel="y", title="second bob, projection on the (x, y) plane", aspect="equal")
 fig.tight_layout()
-fig.savefig("double_spherical_pendulum.png", dpi=120)
-print("wrote double_spherical_pendulum.png")
+figure.parent.mkdir(parents=True, exist_ok=True)
+fig.savefig(figure, dpi=120)
+print(f"wrote {figure}")

@@ -26,7 +26,7 @@ into an exception, ``warnings.simplefilter("ignore", ddirac.SubdividedWarning)``
 
 from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, SpecError, __version__
 from .system import System, builtin_systems
-from .convergence import convergence
+from .convergence import ConvergenceTable, convergence
 from .ensembles import EnsembleResult, ensemble
 from .run import Run, check, simulate
 from .run_warnings import (
@@ -37,8 +37,8 @@ from .run_warnings import (
 from .spec import Spec, load
 
 __all__ = [
-    "ConvergenceError", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run", "Spec", "SpecError",
-    "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
+    "ConvergenceError", "ConvergenceTable", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run",
+    "Spec", "SpecError", "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
     "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
     "LooseToleranceWarning", "NewtonFallbackWarning", "NotInvariantWarning", "SingularChartWarning",
     "SubdividedWarning", "UnderResolvedWarning",

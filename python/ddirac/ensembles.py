@@ -1,12 +1,20 @@
 """Ensembles: many runs of one spec that differ in initial data and/or parameters, on local threads
 or on the workers of a Dask cluster (:func:`ensemble`)."""
 
+from __future__ import annotations
+
 import os
+from typing import TYPE_CHECKING, Any, Iterable, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _ddirac
+from .progress import ProgressArgument
 from .run_warnings import warn_members
+from .spec import SpecLike
+
+if TYPE_CHECKING:  # optional: imported by the functions that need it
+    import pandas
 
 #: Per-member diagnostics, as ``ddirac ensemble`` names its arrays (NaN for a failed member).
 DIAGNOSTICS = (
@@ -33,11 +41,30 @@ class EnsembleResult:
     failed member's last row.
     """
 
-    def __init__(self, parts):
+    coordinates: list[str]
+    keys: list[str]
+    members: dict[str, np.ndarray]
+    final_q: np.ndarray
+    final_p: np.ndarray
+    status: np.ndarray
+    steps: np.ndarray
+    diagnostics: dict[str, np.ndarray]
+    failures: list[dict[str, Any]]
+    derivatives: dict[str, int]
+    warnings: dict[str, int]
+    member_seconds: float
+    t: np.ndarray
+    q: np.ndarray
+    p: np.ndarray
+    energy: np.ndarray
+
+    def __init__(self, parts: Sequence[Mapping[str, Any]]) -> None:
         first = parts[0]
         self.coordinates = list(first["coordinates"])
         self.keys = list(first["keys"])
-        cat = lambda name: np.concatenate([p[name] for p in parts])  # noqa: E731
+
+        def cat(name: str) -> np.ndarray:
+            return np.concatenate([p[name] for p in parts])
         values = cat("members")
         self.members = {key: values[:, i] for i, key in enumerate(self.keys)}
         self.final_q = cat("final_q")
@@ -56,14 +83,14 @@ class EnsembleResult:
             self.p = cat("p")
             self.energy = cat("energy")
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.status)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         failed = int(np.sum(self.status == "failed"))
         return f"ddirac.EnsembleResult(members={len(self)}, failed={failed}, coordinates={self.coordinates})"
 
-    def columns(self):
+    def columns(self) -> dict[str, np.ndarray]:
         """The final table as ``final.csv`` has it: ``member``, ``status``, each coordinate,
         ``p_<coordinate>``, then the diagnostics."""
         out = {"member": np.arange(len(self)), "status": self.status}
@@ -72,35 +99,32 @@ class EnsembleResult:
         out.update(self.diagnostics)
         return out
 
-    def to_pandas(self):
+    def to_pandas(self) -> pandas.DataFrame:
         """:meth:`columns` as a ``pandas.DataFrame`` (pandas is imported only here)."""
         import pandas
 
         return pandas.DataFrame(self.columns())
 
 
-def _sum_counts(lists):
-    total = {}
+def _sum_counts(lists: Iterable[Iterable[tuple[str, int]]]) -> dict[str, int]:
+    total: dict[str, int] = {}
     for pairs in lists:
         for key, count in pairs:
             total[key] = total.get(key, 0) + count
     return total
 
 
-def _source(spec):
+def _source(spec: SpecLike) -> tuple[str, str, list[str]]:
     """(path, text, --set assignments) of a spec path or a :class:`ddirac.Spec`."""
-    from .spec import Spec
+    from .spec import source
 
-    if isinstance(spec, Spec):
-        path, assignments = spec.path, list(spec._assignments)
-    else:
-        path, assignments = os.fspath(spec), []
+    path, assignments = source(spec)
     with open(path, encoding="utf-8") as f:
         text = f.read()
     return path, text, assignments
 
 
-def _columns(members):
+def _columns(members: Any) -> list[tuple[str, list[float]]]:
     """Members (a dict of equal-length arrays or a pandas DataFrame) as a list of (key, values)."""
     if hasattr(members, "columns") and hasattr(members, "to_numpy"):  # a DataFrame
         items = [(str(c), members[c].to_numpy()) for c in members.columns]
@@ -117,19 +141,22 @@ def _columns(members):
     return columns
 
 
-def _chunks(count, parts):
+def _chunks(count: int, parts: int) -> list[tuple[int, int]]:
     """``parts`` contiguous ranges of ``range(count)``, as ``ddirac ensemble --shard`` cuts them."""
     return [(i * count // parts, (i + 1) * count // parts) for i in range(parts) if i * count // parts < (i + 1) * count // parts]
 
 
-def _run_chunk(path, text, assignments, columns, offset, threads, trajectories):
+def _run_chunk(path: str, text: str, assignments: list[str], columns: list[tuple[str, list[float]]], offset: int,
+               threads: Optional[int], trajectories: Optional[bool]) -> dict[str, Any]:
     """One Dask task: the members ``columns`` (numbered from ``offset``) on this worker."""
     from . import _ddirac as core
 
     return core.ensemble(path, text, assignments, columns, offset, threads, trajectories, None)
 
 
-def ensemble(spec, members=None, client=None, threads=None, trajectories=None, chunks=None, progress=None):
+def ensemble(spec: SpecLike, members: Union[Mapping[str, Any], pandas.DataFrame, None] = None, client: Any = None,
+             threads: Optional[int] = None, trajectories: Optional[bool] = None, chunks: Optional[int] = None,
+             progress: ProgressArgument = None) -> EnsembleResult:
     """Runs the members of ``spec`` (a spec path or a :class:`ddirac.Spec` from :func:`ddirac.load`) and
     returns an :class:`EnsembleResult`.
 
@@ -160,12 +187,12 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
     if client is None:
         from .progress import callback
 
-        report, close = callback(progress, len(columns[0][1]) if columns else 0, unit="member")
+        reporter = callback(progress, len(columns[0][1]) if columns else 0, unit="member")
         try:
-            parts = [_ddirac.ensemble(path, text, assignments, columns, 0, threads, trajectories, report)]
+            parts = [_ddirac.ensemble(path, text, assignments, columns, 0, threads, trajectories, reporter.report)]
+            reporter.done()
         finally:
-            if close is not None:
-                close()
+            reporter.close()
         return _warned(EnsembleResult(parts))
     count = len(columns[0][1]) if columns else 0
     if count == 0:
@@ -174,7 +201,7 @@ def ensemble(spec, members=None, client=None, threads=None, trajectories=None, c
         workers = client.scheduler_info().get("workers", {})
         slots = sum(w.get("nthreads", 1) for w in workers.values()) or 1
         chunks = 4 * slots
-    futures = []
+    futures: list[Any] = []
     for start, end in _chunks(count, max(1, min(int(chunks), count))):
         part = [(key, values[start:end]) for key, values in columns]
         futures.append(client.submit(_run_chunk, path, text, assignments, part, start, 1, trajectories,

@@ -1,11 +1,24 @@
 """One run: :func:`simulate` and the :class:`Run` it returns."""
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _ddirac
+from .progress import ProgressArgument
 from .run_warnings import warn_run
+from .system import System
+
+if TYPE_CHECKING:  # optional: imported by the methods that need them
+    import pandas
+    import xarray
+
+#: Initial data: a sequence in the order of ``system.coordinates``, or a mapping by coordinate (a name,
+#: a SymPy symbol or dynamicsymbol; for velocities also the derivative ``q(t).diff(t)``).
+Vector = Union[Sequence[float], "np.ndarray", Mapping[Any, float]]
 
 #: Method keys :func:`simulate` takes besides ``rule``, ``variant`` and ``reduced``, with their
 #: defaults (as the ``[method]`` table of a spec).
@@ -32,70 +45,95 @@ class Run:
 
     Attributes: ``t`` (rows,), ``q`` and ``p`` (rows, n), ``energy`` (the Hamiltonian H(q, p)),
     ``discrete_energy`` (L_d(q_k, q_{k+1}), NaN on the last row), ``momentum_map`` (rows, number of
-    group coordinates), ``summary`` (the dict ``summary.json`` holds), ``coordinates`` (the names of
-    the columns of ``q`` and ``p``) and ``group`` (those of ``momentum_map``).
+    group coordinates), ``chart`` (rows: the chart of the system's atlas each row's step was in, 0 for
+    the main chart, in which ``q`` and ``p`` are given; None when the run cannot switch charts: a system
+    without an atlas, or ``atlas=False``), ``summary`` (the dict ``summary.json`` holds),
+    ``coordinates`` (the names of the columns of ``q`` and ``p``) and ``group`` (those of
+    ``momentum_map``).
     """
 
-    def __init__(self, arrays, coordinates, group):
+    t: np.ndarray
+    q: np.ndarray
+    p: np.ndarray
+    energy: np.ndarray
+    discrete_energy: np.ndarray
+    momentum_map: np.ndarray
+    chart: Optional[np.ndarray]
+    summary: dict[str, Any]
+    coordinates: list[str]
+    group: list[str]
+
+    def __init__(self, arrays: Mapping[str, Any], coordinates: Sequence[str], group: Sequence[str]) -> None:
         self.t = arrays["t"]
         self.q = arrays["q"]
         self.p = arrays["p"]
         self.energy = arrays["energy"]
         self.discrete_energy = arrays["discrete_energy"]
         self.momentum_map = arrays["momentum_map"]
+        self.chart = arrays["chart"] if arrays.get("switching") else None
         self.summary = arrays["summary"]
         self.coordinates = list(coordinates)
         self.group = list(group)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.t)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"ddirac.Run({self.summary['system']!r}, rows={len(self)}, steps={self.summary['steps']}, "
                 f"step={self.summary['step']})")
 
-    def columns(self):
+    def columns(self) -> dict[str, np.ndarray]:
         """The rows as named columns, as ``trajectory.csv`` names them: ``t``, each coordinate,
-        ``p_<coordinate>``, ``energy``, ``discrete_energy``, ``momentum_<group coordinate>``."""
+        ``p_<coordinate>``, ``energy``, ``discrete_energy``, ``momentum_<group coordinate>``, and
+        ``chart`` when the run can switch charts of an atlas (as ``trajectory.csv`` has it then)."""
         out = {"t": self.t}
         out.update({name: self.q[:, i] for i, name in enumerate(self.coordinates)})
         out.update({f"p_{name}": self.p[:, i] for i, name in enumerate(self.coordinates)})
         out["energy"] = self.energy
         out["discrete_energy"] = self.discrete_energy
         out.update({f"momentum_{name}": self.momentum_map[:, i] for i, name in enumerate(self.group)})
+        if self.chart is not None:
+            out["chart"] = self.chart
         return out
 
-    def to_xarray(self):
+    def to_xarray(self) -> xarray.Dataset:
         """The run as an ``xarray.Dataset`` over ``t`` (xarray is imported only here): ``q`` and ``p`` with a
         ``coordinate`` dimension, ``momentum_map`` with a ``group`` dimension, ``energy``,
-        ``discrete_energy``; the summary in ``attrs["summary"]``."""
+        ``discrete_energy``, and ``chart`` when the run can switch charts; the summary in
+        ``attrs["summary"]``."""
         import xarray
 
+        variables: dict[str, Any] = {
+            "q": (("t", "coordinate"), self.q),
+            "p": (("t", "coordinate"), self.p),
+            "energy": ("t", self.energy),
+            "discrete_energy": ("t", self.discrete_energy),
+            "momentum_map": (("t", "group"), self.momentum_map),
+        }
+        if self.chart is not None:
+            variables["chart"] = ("t", self.chart)
         return xarray.Dataset(
-            {
-                "q": (("t", "coordinate"), self.q),
-                "p": (("t", "coordinate"), self.p),
-                "energy": ("t", self.energy),
-                "discrete_energy": ("t", self.discrete_energy),
-                "momentum_map": (("t", "group"), self.momentum_map),
-            },
+            variables,
             coords={"t": self.t, "coordinate": self.coordinates, "group": self.group},
             attrs={"summary": self.summary},
         )
 
-    def to_pandas(self):
+    def to_pandas(self) -> pandas.DataFrame:
         """The named columns as a ``pandas.DataFrame`` (pandas is imported only here)."""
         import pandas
 
         return pandas.DataFrame(self.columns())
 
 
-def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint",
-             variant="plus", reduced=False, every=1, wrap_angles=False, progress=None, **method):
+def simulate(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+             step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
+             rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
+             wrap_angles: bool = False, progress: ProgressArgument = None, **method: Any) -> Run:
     """Integrates ``system`` from ``q0`` with momenta ``p0`` or velocities ``v0``.
 
     Give two of ``step``, ``steps`` and ``duration`` (all three must agree). ``q0``, ``p0`` and
-    ``v0`` are sequences in the order of ``system.coordinates``, or dicts by coordinate name.
+    ``v0`` are sequences in the order of ``system.coordinates``, or dicts by coordinate (its name, or a
+    SymPy symbol or dynamicsymbol ``q(t)`` of that name; the keys of ``v0`` may be ``q(t).diff(t)``).
     ``rule`` is ``left``, ``right``, ``midpoint`` or ``trapezoid``; ``variant`` ``plus`` or ``minus``;
     ``reduced=True`` integrates the reduced equations and reconstructs the group motion. Other method
     keys: ``connection`` (rows of K, one per group coordinate), ``tolerance``, ``max_iterations``,
@@ -108,7 +146,7 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
 
     The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.
     ``progress`` shows a bar (``True``; by default only in a notebook), or is called as
-    ``progress(k, steps)`` about ten times a second.
+    ``progress(k, steps)`` about ten times a second, and with ``k = steps`` when the run completes.
 
     The run's warnings (``summary["warnings"]``) are also emitted as :class:`ddirac.RunWarning`
     subclasses, one per kind (``warnings.simplefilter("error", ddirac.RunWarning)`` makes them errors).
@@ -119,25 +157,28 @@ def simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None,
     return result
 
 
-def _simulate(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint", variant="plus",
-              reduced=False, every=1, wrap_angles=False, progress=None, **method) -> Run:
+def _simulate(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+              step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
+              rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
+              wrap_angles: bool = False, progress: ProgressArgument = None, **method: Any) -> Run:
     """:func:`simulate` without emitting the run's warnings (they are in its summary)."""
     args = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
     every = _count(every, "every")
     from .progress import callback
 
-    report, close = callback(progress, args["steps"])
+    reporter = callback(progress, args["steps"])
     try:
-        arrays = _ddirac.simulate(system._handle, args, every, bool(wrap_angles), report)
+        arrays = _ddirac.simulate(system._handle, args, every, bool(wrap_angles), reporter.report)
+        reporter.done()
     finally:
-        if close is not None:
-            close()
+        reporter.close()
     names = system.coordinates
     return Run(arrays, names, system.group)
 
 
-def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, rule="midpoint", variant="plus",
-          reduced=False, **method):
+def check(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+          step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
+          rule: str = "midpoint", variant: str = "plus", reduced: bool = False, **method: Any) -> dict[str, Any]:
     """Tests the hypotheses a run of :func:`simulate` with the same arguments would rest on, without
     integrating: the invariance of L_d under each group translation (reduced runs), the
     2π-periodicity of L in each angle, the connection's axioms, the rank of the Legendre map, the
@@ -154,7 +195,9 @@ def check(system, q0, p0=None, v0=None, step=None, steps=None, duration=None, ru
     return report
 
 
-def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method):
+def _prepare(system: System, q0: Vector, p0: Optional[Vector], v0: Optional[Vector], step: Optional[float],
+             steps: Optional[int], duration: Optional[float], rule: str, variant: str, reduced: bool,
+             method: Mapping[str, Any]) -> dict[str, Any]:
     """The arguments of a run, checked, as the dict the module takes: ``q0``, ``p0``, ``v0``, ``step``,
     ``steps`` and the ``method`` keys."""
     from .system import System
@@ -170,8 +213,8 @@ def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, 
     q0 = _vector(q0, names, "q0")
     if (p0 is None) == (v0 is None):
         raise _ddirac.Error("give exactly one of `p0` (momenta) and `v0` (velocities)")
-    p0 = None if p0 is None else _vector(p0, names, "p0")
-    v0 = None if v0 is None else _vector(v0, names, "v0")
+    p = None if p0 is None else _vector(p0, names, "p0")
+    v = None if v0 is None else _vector(v0, names, "v0", velocities=True)
     h, n = _grid(step, steps, duration)
     connection = keys["connection"]
     if connection is not None:
@@ -192,17 +235,27 @@ def _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, 
         "composition": None if keys["composition"] is None else str(keys["composition"]),
         "atlas": bool(keys["atlas"]),
     }
-    return {"q0": q0, "p0": p0, "v0": v0, "step": h, "steps": n, "method": keys}
+    return {"q0": q0, "p0": p, "v0": v, "step": h, "steps": n, "method": keys}
 
 
-def _vector(values, names, what):
-    if isinstance(values, dict):
-        missing = [n for n in names if n not in values]
-        extra = [k for k in values if k not in names]
+def _vector(values: Vector, names: list[str], what: str, velocities: bool = False) -> list[float]:
+    """The entries of ``values`` in the order of ``names``: a sequence, or a mapping by coordinate (a
+    name, a SymPy symbol or dynamicsymbol; with ``velocities`` also its time derivative)."""
+    if isinstance(values, Mapping):
+        from .system import _coordinate_key
+
+        by_name: dict[str, Any] = {}
+        for key, value in values.items():
+            name, _ = _coordinate_key(key, f"a key of `{what}`", velocity=velocities)
+            if name in by_name:
+                raise _ddirac.Error(f"`{what}` gives coordinate `{name}` twice")
+            by_name[name] = value
+        missing = [n for n in names if n not in by_name]
+        extra = [k for k in by_name if k not in names]
         if missing or extra:
             raise _ddirac.Error(f"`{what}` must give each coordinate once ({', '.join(names)}): "
-                                + (f"missing {', '.join(missing)}" if missing else f"unknown {', '.join(map(str, extra))}"))
-        values = [values[n] for n in names]
+                                + (f"missing {', '.join(missing)}" if missing else f"unknown {', '.join(extra)}"))
+        values = [by_name[n] for n in names]
     array = np.asarray(values, dtype=float)
     if array.ndim != 1 or len(array) != len(names):
         raise _ddirac.Error(f"`{what}` has {array.size} entries; the system has {len(names)} coordinates "
@@ -213,20 +266,20 @@ def _vector(values, names, what):
     return [float(x) for x in array]
 
 
-def _count(value, what):
+def _count(value: Any, what: str) -> int:
     if isinstance(value, bool) or int(value) != value or int(value) < 1:
         raise _ddirac.Error(f"`{what}` must be a whole number of at least 1, not {value!r}")
     return int(value)
 
 
-def _positive(value, what):
+def _positive(value: Any, what: str) -> float:
     value = float(value)
     if not (math.isfinite(value) and value > 0):
         raise _ddirac.Error(f"`{what}` must be a positive number, not {value!r}")
     return value
 
 
-def _grid(step, steps, duration):
+def _grid(step: Optional[float], steps: Optional[int], duration: Optional[float]) -> tuple[float, int]:
     """(step, steps) from two or three of step, steps, duration, as a spec's ``[time]`` table."""
     h = None if step is None else _positive(step, "step")
     n = None if steps is None else _count(steps, "steps")
@@ -238,8 +291,10 @@ def _grid(step, steps, duration):
         if d is not None and abs(h * n - d) > _WHOLE * d:
             raise _ddirac.Error(f"inconsistent time grid: step × steps = {h * n}, but duration = {d}")
         return h, n
+    assert d is not None  # two of the three are given, and not both step and steps
     if n is not None:
         return d / n, n
+    assert h is not None
     ratio = d / h
     whole = round(ratio)
     if whole < 1 or abs(ratio - whole) > _WHOLE * whole:

@@ -16,6 +16,7 @@ import math
 import os
 import sys
 import warnings
+from types import FrameType
 from typing import Any, Iterable, Mapping, Optional, Sequence
 
 
@@ -161,7 +162,7 @@ def _first_event(entry: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
 
 def _emit(warning: RunWarning) -> None:
     """Issues ``warning`` at the first frame outside the package: the user's call."""
-    frame = sys._getframe(0)
+    frame: Optional[FrameType] = sys._getframe(0)
     level = 1
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE):
         frame = frame.f_back

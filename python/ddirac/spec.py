@@ -1,34 +1,69 @@
 """Spec files: :func:`load` reads a TOML spec as ``ddirac run`` does, with overrides as ``--set`` gives them."""
 
+from __future__ import annotations
+
 import json
 import math
 import os
+from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _ddirac
+from .convergence import ConvergenceTable
+from .progress import ProgressArgument
+from .run import Run
 from .run_warnings import warn_run
+from .system import System
 
-
-def load(path, overrides=None):
-    """Reads and validates the spec at ``path``; ``overrides`` maps spec keys to values, as
+def load(spec: SpecLike, overrides: Optional[Mapping[str, Any]] = None) -> Spec:
+    """Reads and validates the spec at the path ``spec``; ``overrides`` maps spec keys to values, as
     ``--set KEY=VALUE`` does: ``ddirac.load("spec.toml", overrides={"method.reduced": False,
     "time.steps": 1000, "initial.q.phi1": 2.0})``. Errors are :class:`ddirac.Error` with the
-    diagnostic the command line prints (the spec line underlined)."""
+    diagnostic the command line prints (the spec line underlined).
+
+    ``spec`` may also be a :class:`Spec` that :func:`load` returned: its file is read again with its
+    own overrides and then ``overrides`` on top (a key given in both takes the value given here), as
+    loading the file with both sets at once would."""
     assignments = [f"{key}={_toml(value, key)}" for key, value in (overrides or {}).items()]
-    spec = Spec(_ddirac.load_spec(os.fspath(path), assignments), os.fspath(path))
-    spec._assignments = assignments
-    return spec
+    path, earlier = source(spec)
+    assignments = earlier + assignments
+    loaded = Spec(_ddirac.load_spec(path, assignments), path)
+    loaded._assignments = assignments
+    return loaded
+
+
+def source(spec: SpecLike) -> tuple[str, list[str]]:
+    """The path of ``spec`` (a path or a :class:`Spec`) and its ``--set`` assignments, in order."""
+    if isinstance(spec, Spec):
+        return spec.path, list(spec._assignments)
+    try:
+        return os.fspath(spec), []
+    except TypeError:
+        raise _ddirac.Error(f"a spec is the path of a spec file or a ddirac.Spec from ddirac.load, "
+                            f"not {type(spec).__name__}") from None
 
 
 class Spec:
-    """A validated spec: its system, time grid, initial data and method; :meth:`run` integrates it."""
+    """A validated spec: its system, time grid, initial data and method; :meth:`run` integrates it.
 
-    def __init__(self, handle, path):
+    Attributes: ``path`` (the spec file), ``system`` (a :class:`ddirac.System`), ``step``, ``steps``,
+    ``q0``, ``p0`` or ``v0`` (the other None), ``method`` (the ``[method]`` keys, as a dict)."""
+
+    path: str
+    system: System
+    step: float
+    steps: int
+    q0: np.ndarray
+    p0: Optional[np.ndarray]
+    v0: Optional[np.ndarray]
+    method: dict[str, Any]
+
+    def __init__(self, handle: _ddirac.LoadedSpec, path: str) -> None:
         from .system import System
 
         self._handle = handle
-        self._assignments = []
+        self._assignments: list[str] = []
         self.path = path
         self.system = System._from_handle(handle.system)
         self.step, self.steps, q0, p0, v0 = handle.problem
@@ -38,11 +73,12 @@ class Spec:
         self.method = handle.method
 
     @property
-    def directory(self):
+    def directory(self) -> str:
         """Where ``ddirac run`` would write this spec's output."""
         return os.fspath(self._handle.directory)
 
-    def run(self, out=None, write=None, progress=None):
+    def run(self, out: Optional[Union[str, os.PathLike[str]]] = None, write: Optional[bool] = None,
+            progress: ProgressArgument = None) -> Run:
         """Integrates the spec and returns a :class:`ddirac.Run`.
 
         With ``out`` (a directory) or ``write=True`` (the spec's own directory) it also writes the files
@@ -56,12 +92,12 @@ class Spec:
         if out is None and not write:
             from .progress import callback
 
-            report, close = callback(progress, self.steps)
+            reporter = callback(progress, self.steps)
             try:
-                arrays = self._handle.run_arrays(report)
+                arrays = self._handle.run_arrays(reporter.report)
+                reporter.done()
             finally:
-                if close is not None:
-                    close()
+                reporter.close()
             run = Run(arrays, self.system.coordinates, self.system.group)
         else:
             directory = os.fspath(self._handle.run_files(None if out is None else os.fspath(out)))
@@ -69,7 +105,7 @@ class Spec:
         warn_run(run.summary["warnings"])
         return run
 
-    def check(self):
+    def check(self) -> dict[str, Any]:
         """:func:`ddirac.check` of this spec's system, initial data, time grid and method."""
         from .run import check
 
@@ -78,18 +114,23 @@ class Spec:
                      rule=self.method["rule"], variant=self.method["variant"], reduced=self.method["reduced"],
                      **method)
 
-    def convergence(self, steps):
+    def convergence(self, steps: Sequence[int]) -> ConvergenceTable:
         """:func:`ddirac.convergence` of this spec over its duration with the step counts ``steps``."""
         from .convergence import convergence
 
         method = dict(self.method)
         return convergence(self.system, steps, self.step * self.steps, self.q0, p0=self.p0, v0=self.v0, **method)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"ddirac.Spec({self.path!r}, system={self.system.name!r}, steps={self.steps}, step={self.step})"
 
 
-def _read_run(directory, system):
+#: What takes a spec: the path of a spec file, or a :class:`Spec` from :func:`load` (its file with its
+#: overrides).
+SpecLike = Union[str, os.PathLike[str], Spec]
+
+
+def _read_run(directory: str, system: System) -> Run:
     """The arrays of a run directory (trajectory.csv, or npy/), as a Run."""
     from .run import Run
 
@@ -99,10 +140,16 @@ def _read_run(directory, system):
     csv = os.path.join(directory, "trajectory.csv")
     if os.path.exists(csv):
         data = np.genfromtxt(csv, delimiter=",", names=True, dtype=float, missing_values="", filling_values=np.nan)
-        column = lambda name: np.atleast_1d(data[name])  # noqa: E731
+        header = data.dtype.names or ()
+
+        def column(name: str) -> np.ndarray:
+            return np.atleast_1d(data[name])
     else:
-        column = lambda name: np.load(os.path.join(directory, "npy", f"{name}.npy"))  # noqa: E731
-    arrays = {
+        header = tuple(f[:-4] for f in os.listdir(os.path.join(directory, "npy")) if f.endswith(".npy"))
+
+        def column(name: str) -> np.ndarray:
+            return np.load(os.path.join(directory, "npy", f"{name}.npy"))
+    arrays: dict[str, Any] = {
         "t": column("t"),
         "q": np.column_stack([column(n) for n in names]),
         "p": np.column_stack([column(f"p_{n}") for n in names]),
@@ -111,11 +158,15 @@ def _read_run(directory, system):
         "momentum_map": np.column_stack([column(f"momentum_{g}") for g in system.group])
         if system.group else np.empty((len(column("t")), 0)),
         "summary": summary,
+        # The files have a `chart` column when the run can switch charts.
+        "switching": "chart" in header,
     }
+    if arrays["switching"]:
+        arrays["chart"] = column("chart").astype(np.int64)
     return Run(arrays, names, system.group)
 
 
-def _toml(value, key):
+def _toml(value: Any, key: str) -> str:
     """A Python value as a TOML value for ``--set``."""
     if isinstance(value, bool):
         return "true" if value else "false"

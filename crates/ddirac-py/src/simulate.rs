@@ -131,6 +131,7 @@ pub(crate) fn collect(
         columns.energy.push(row.energy);
         columns.discrete_energy.push(row.discrete_energy.unwrap_or(f64::NAN));
         columns.momentum_map.extend_from_slice(row.momentum_map);
+        columns.chart.push(row.chart as i64);
         Ok(())
     };
     let summary = system.integrate_watched(problem, method, output, observer, watch)?;
@@ -211,11 +212,15 @@ pub(crate) struct Columns {
     energy: Vec<f64>,
     discrete_energy: Vec<f64>,
     momentum_map: Vec<f64>,
+    /// The chart of the atlas each row's step was in (0: the main chart).
+    chart: Vec<i64>,
 }
 
 /// Integrates `system` for the run `run_args` ([`RunArgs`]), keeping every `every`-th row;
 /// returns a dict of NumPy arrays (`t`, `q`, `p` of shape (rows, n), `energy`, `discrete_energy` with
-/// NaN on the last row, `momentum_map` of shape (rows, n_g)) and the `summary` dict.
+/// NaN on the last row, `momentum_map` of shape (rows, n_g), `chart` the chart of the atlas each row's
+/// step was in, `switching` whether the run may switch charts (as `trajectory.csv` then has a `chart`
+/// column)) and the `summary` dict.
 #[pyfunction]
 #[pyo3(signature = (system, run_args, every, wrap_angles, progress=None))]
 pub fn simulate<'py>(
@@ -256,6 +261,9 @@ pub(crate) fn run<'py>(
     out.set_item("energy", PyArray1::from_vec(py, columns.energy))?;
     out.set_item("discrete_energy", PyArray1::from_vec(py, columns.discrete_energy))?;
     out.set_item("momentum_map", PyArray1::from_vec(py, columns.momentum_map).reshape([rows, n_g])?)?;
+    out.set_item("chart", PyArray1::from_vec(py, columns.chart))?;
+    // As the command line decides whether `trajectory.csv` has a `chart` column.
+    out.set_item("switching", method_for_summary.atlas && !system.inner.charts().is_empty())?;
     let (run_problem, run_method) = (&problem_for_summary, &method_for_summary);
     out.set_item("summary", summary_dict(py, system, &summary, run_problem, run_method, &output)?)?;
     Ok(out)
