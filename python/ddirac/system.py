@@ -29,6 +29,9 @@ class System:
     ``q`` or dynamicsymbol ``q(t)`` names the coordinate ``q``, and the keys of ``v0`` may be the
     velocities ``q(t).diff(t)``::
 
+        from sympy import cos
+        from sympy.physics.mechanics import dynamicsymbols
+
         th, t = dynamicsymbols("th"), dynamicsymbols._t
         pendulum = ddirac.System(lagrangian=th.diff(t)**2 / 2 + cos(th), shape=[th], angles=[th])
         ddirac.simulate(pendulum, q0={th: 1.0}, v0={th.diff(t): 0.0}, step=0.01, steps=100)
