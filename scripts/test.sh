@@ -28,10 +28,11 @@ fi
 py="$(cd "$venv" && pwd)/bin/python"
 
 # pandas and Dask (`distributed`) for the ensemble tests: a DataFrame of members, a LocalCluster;
-# Matplotlib and MkDocs for the guide's code blocks and its build (python/tests/test_docs.py).
-echo "== the Python tests' dependencies (pytest, NumPy, SymPy, pandas, Dask) into $venv"
+# Matplotlib and MkDocs for the guide's code blocks and its build (python/tests/test_docs.py); mypy for
+# the public API's annotations (test_issue_35_type_annotations.py).
+echo "== the Python tests' dependencies (pytest, NumPy, SymPy, pandas, Dask, Matplotlib, MkDocs, mypy) into $venv"
 "$py" -m pip install --quiet --upgrade pip
-"$py" -m pip install --quiet pytest numpy sympy pandas "dask[distributed]" matplotlib "mkdocs>=1.6,<2"
+"$py" -m pip install --quiet pytest numpy sympy pandas "dask[distributed]" matplotlib "mkdocs>=1.6,<2" mypy
 echo "== building and installing the Python package into $venv "
 echo "   (pip install .: maturin compiles the extension module, about 5 minutes on an idle 2-core machine)"
 "$py" -m pip install --quiet .

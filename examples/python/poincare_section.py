@@ -8,7 +8,7 @@ an area when it is chaotic. One call runs all members in parallel (the GIL relea
 equals the single run of the spec with its initial data, bit for bit.
 
     pip install .  matplotlib        # from the repository's root
-    python examples/python/poincare_section.py [--members 300] [--out poincare.png]
+    python examples/python/poincare_section.py [--members 300] [--out DIR]   # writes DIR/poincare_section.png
     python examples/python/poincare_section.py --dask        # the same on a local Dask cluster
 """
 
@@ -56,7 +56,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--members", type=int, default=300)
     parser.add_argument("--energy", type=float, default=0.1)
-    parser.add_argument("--out", default="poincare_section.png")
+    parser.add_argument("--out", default="out", help="the directory of the figure (default: out, made if missing)")
     parser.add_argument("--dask", action="store_true", help="run the members on a local Dask cluster")
     args = parser.parse_args()
 
@@ -83,7 +83,8 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        path = Path(args.out).with_suffix(".csv")
+        path = Path(args.out) / "poincare_section.csv"
+        path.parent.mkdir(parents=True, exist_ok=True)
         np.savetxt(path, np.column_stack([member, r, pr]), delimiter=",", header="member,r,p_r", comments="")
         print(f"matplotlib is not installed: the crossings are in {path}")
         return
@@ -93,8 +94,10 @@ def main():
     ax.set_ylabel("p_r")
     ax.set_title(f"magnetic mirror, p_phi = {spec.p0[2]}, H = {args.energy}: crossings of z = 0 upwards")
     fig.tight_layout()
-    fig.savefig(args.out)
-    print(f"figure written to {args.out}")
+    figure = Path(args.out) / "poincare_section.png"
+    figure.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(figure)
+    print(f"wrote {figure}")
 
 
 if __name__ == "__main__":

@@ -16,7 +16,7 @@ cluster: ``ddirac.ensemble("spec.toml", members={"initial.q.phi1": np.linspace(1
 A spec file runs as ``ddirac run`` runs it: ``ddirac.load("spec.toml", overrides={"method.reduced":
 False}).run()``. Every error is a :class:`ddirac.Error` whose message names the argument and the cause;
 its subclasses :class:`SpecError`, :class:`ExpressionError` (``origin``, ``text``, ``span``),
-:class:`InvarianceError` and :class:`ConvergenceError` (``step``, ``t``, ``residual``) say more.
+:class:`InvarianceError` and :class:`ConvergenceError` (``step``, ``t``, ``h``, ``residual``) say more.
 
 A run that completes with warnings (``run.summary["warnings"]``) also emits them through the
 :mod:`warnings` module as :class:`ddirac.RunWarning` subclasses, one per kind (:class:`EnergyJumpWarning`,

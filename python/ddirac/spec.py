@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import warnings
 from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -24,12 +25,19 @@ def load(spec: SpecLike, overrides: Optional[Mapping[str, Any]] = None) -> Spec:
 
     ``spec`` may also be a :class:`Spec` that :func:`load` returned: its file is read again with its
     own overrides and then ``overrides`` on top (a key given in both takes the value given here), as
-    loading the file with both sets at once would."""
+    loading the file with both sets at once would.
+
+    An override of ``time.duration`` that changes the step h (a spec that gives ``steps`` and
+    ``duration`` keeps N, and so scales h) warns with the h that results."""
     assignments = [f"{key}={_toml(value, key)}" for key, value in (overrides or {}).items()]
     path, earlier = source(spec)
     assignments = earlier + assignments
     loaded = Spec(_ddirac.load_spec(path, assignments), path)
     loaded._assignments = assignments
+    # What the overrides did that may surprise (the step h an override of another `[time]` key
+    # gives), as `ddirac run` prints it.
+    for note in loaded._handle.notes:
+        warnings.warn(f"ddirac.load: {note}", UserWarning, stacklevel=2)
     return loaded
 
 

@@ -394,6 +394,7 @@ fn summary_dict<'py>(
     let j = PyDict::new(py);
     j.set_item("initial", &s.momentum_map.initial)?;
     j.set_item("max_drift", s.momentum_map.max_drift)?;
+    j.set_item("scale", s.momentum_map.scale)?;
     j.set_item("max_relative_drift", s.momentum_map.max_relative_drift)?;
     d.set_item("momentum_map", j)?;
     d.set_item("derivatives", s.derivatives.to_string())?;

@@ -82,7 +82,8 @@ pub struct MomentumMapDrift {
     /// max_k ‖J_k − J_0‖∞ over all steps.
     pub max_drift: f64,
     /// The size the drift is measured against: the larger of ‖J_0‖∞ and the largest momentum |p_i|
-    /// of any step.
+    /// of any step (of the momenta the scheme carries, (μ, w) for a reduced run, when the energy is
+    /// not watched: `on_energy_jump = "ignore"`).
     pub scale: f64,
     /// `max_drift / scale`; `None` when every momentum of the run is 0.
     pub max_relative_drift: Option<f64>,

@@ -141,11 +141,12 @@ pub fn grid(source: &SpecSource, time: &Spanned<TimeSpec>) -> Result<(f64, usize
 }
 
 /// What overriding keys of `[time]` did to the step: a note when the step h of the spec `edited`
-/// differs from that of the spec `original` although `time.step` was not among the overridden
-/// `keys` — say `time.duration` of a spec that gives `steps` and `duration`, which keeps N and so
-/// scales h. `None` when h is unchanged, or either spec has no valid grid.
+/// differs from that of the spec `original` although neither `time.step` nor `time.steps` was among
+/// the overridden `keys` — `time.duration` of a spec that gives `steps` and `duration` keeps N, and so
+/// scales h. (Overriding the steps over a fixed duration changes h as asked.) `None` when h is
+/// unchanged, or either spec has no valid grid.
 pub fn changed_step(original: &SpecSource, edited: &SpecSource, keys: &[&str]) -> Option<String> {
-    if keys.contains(&"step") || keys.is_empty() {
+    if keys.is_empty() || keys.contains(&"step") || keys.contains(&"steps") {
         return None;
     }
     let (h0, n0) = grid(original, &super::parse(original).ok()?.time).ok()?;
@@ -156,7 +157,8 @@ pub fn changed_step(original: &SpecSource, edited: &SpecSource, keys: &[&str]) -
     let set: Vec<String> = keys.iter().map(|k| format!("`time.{k}`")).collect();
     let duration = h * n as f64;
     let mut note = format!(
-        "overriding {} makes the step h = {} ({n} steps over a duration of {}); the spec's own step is h = {}          ({n0} steps)",
+        "overriding {} makes the step h = {} ({n} steps over a duration of {}); the spec's own step is h = {} \
+         ({n0} steps)",
         set.join(" and "),
         number(h),
         number(duration),

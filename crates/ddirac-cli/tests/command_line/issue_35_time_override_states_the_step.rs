@@ -47,11 +47,15 @@ fn an_override_that_keeps_the_step_or_sets_it_is_not_noted() {
 }
 
 #[test]
-fn more_steps_over_the_same_duration_are_noted_with_their_step() {
-    // Halving h by doubling the steps is what `time.steps` means; the note states the new h.
+fn more_steps_over_the_same_duration_are_what_was_asked_and_the_summary_states_h() {
+    // Halving h by doubling the steps is what `time.steps` means (a convergence study does it at
+    // every row): no note, and the printed summary states the new h.
     let dir = TempDir::new("time-override-steps");
-    let output = run(&example("double_spherical_pendulum.toml"), &["time.steps=20"], &dir);
+    let out = dir.out();
+    let spec = example("double_spherical_pendulum.toml");
+    let output = common::ddirac(&["run", &spec, "--out", out.to_str().unwrap(), "--set", "time.steps=20"], &dir.0);
     assert!(output.status.success(), "{}", stderr(&output));
-    let text = stderr(&output);
-    assert!(text.contains(&format!("the step h = {} (20 steps", 100.0 / 20.0)), "{text}");
+    assert!(!stderr(&output).contains("note:"), "{}", stderr(&output));
+    let report = common::stdout(&output);
+    assert!(report.contains(&format!("20 steps of h = {} ", 100.0 / 20.0)), "{report}");
 }

@@ -244,7 +244,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         if !self.carries_momentum[self.current] {
             if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
                 let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
-                chart.progress.record.drift(&self.split, &p_main);
+                chart.progress.record.drift(&self.split, &p_main, &p_main);
             }
         }
     }

@@ -124,12 +124,12 @@ impl<Dm: Dim> Clone for Record<Dm> {
 }
 
 impl<Dm: Dim> Record<Dm> {
-    /// Folds the momentum map of the scheme `momenta` into the largest drift, and the momenta into
-    /// its scale.
-    pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>) {
+    /// Folds the momentum map of the scheme's `momenta` into the largest drift, and the momenta `p`
+    /// into its scale (the canonical p where the step has them, else the scheme's momenta).
+    pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>, p: &Dm::Array<f64>) {
         let j = split.momentum_map(momenta.as_ref());
         self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
-        self.momentum_scale = momenta.as_ref().iter().fold(self.momentum_scale, |m, p| m.max(p.abs()));
+        self.momentum_scale = p.as_ref().iter().fold(self.momentum_scale, |m, p| m.max(p.abs()));
     }
 }
 
@@ -198,7 +198,7 @@ impl<Dm: Dim> Progress<Dm> {
             warnings: Warnings(warnings),
             resolution: Resolution::new(dim),
         };
-        record.drift(split, &momenta);
+        record.drift(split, &momenta, &p);
         Self {
             k,
             config: ConfigurationIn::new(q, kinds.clone()),
@@ -443,6 +443,7 @@ impl<Dm: Dim> Progress<Dm> {
             let message = "the closed-form step failed its residual test; the step was solved by Newton's method";
             record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
         }
+        let canonical = pv.is_some();
         let jump = pv.and_then(|(pv, p_next)| {
             let pv = pv / h;
             self.last_energy = pv - discrete_energy / h;
@@ -473,7 +474,8 @@ impl<Dm: Dim> Progress<Dm> {
         }
         self.momenta = momenta_next;
         self.k += 1;
-        record.drift(split, &self.momenta);
+        // The canonical momenta where the energy watch computed them, else the scheme's.
+        record.drift(split, &self.momenta, if canonical { &self.p_now } else { &self.momenta });
         if let Some(drift) = self.monitor.take_drift() {
             record.warnings.push(Warning::new(WarningKind::EnergyDrift, Some(drift.at), drift.describe()));
         }

@@ -194,7 +194,7 @@ fn newton_failures_are_errors_naming_the_step() {
     let method = Method { newton: NewtonOptions { max_iterations: 0, ..NewtonOptions::default() }, ..reduced() };
     let e = run_err(&DoubleSphericalPendulum::default(), &DoubleSphericalPendulum::paper_problem(100), &method);
     assert!(matches!(&e, Error::Newton { step: 0, iterations: 0, .. }), "{e:?}");
-    assert!(e.to_string().contains("step 0 (t = 0, h = 0.01)"), "{e}");
+    assert!(e.to_string().contains("step 0 (t = 0, h = 1)"), "{e}");
 
     // A step of half an orbital period through periapsis has no nearby root: it is taken as
     // sub-steps instead (see issue_14_failed_steps_are_subdivided.rs), and the run completes.
