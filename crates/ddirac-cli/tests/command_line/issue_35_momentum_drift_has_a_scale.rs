@@ -57,3 +57,23 @@ fn the_printed_summary_says_what_the_drift_is_relative_to() {
     let line = common::line(&report, "momentum map");
     assert!(line.contains("relative") && line.contains("the largest of |J_0| and the momenta"), "{line}");
 }
+
+#[test]
+fn a_run_whose_momenta_are_all_zero_has_no_relative_drift_and_says_why() {
+    // The charged particle at rest: every momentum stays 0, so there is nothing to measure against.
+    let dir = TempDir::new("momentum-scale-zero");
+    let out = dir.out();
+    let spec = example("charged_particle.toml");
+    let output = common::ddirac(
+        &["run", &spec, "--out", out.to_str().unwrap(), "--set", "initial.p=[0.0, 0.0, 0.0, 0.0]"],
+        &dir.0,
+    );
+    assert!(output.status.success(), "{}", common::stderr(&output));
+    let summary = common::summary(&dir);
+    let j = &summary["momentum_map"];
+    assert_eq!(j["scale"].as_f64(), Some(0.0));
+    assert_eq!(j["max_drift"].as_f64(), Some(0.0));
+    assert!(j["max_relative_drift"].is_null());
+    let report = common::stdout(&output);
+    assert!(common::line(&report, "momentum map").contains("every momentum is 0"), "{report}");
+}
