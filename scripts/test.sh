@@ -38,7 +38,8 @@ echo "   (pip install .: maturin compiles the extension module, about 5 minutes 
 "$py" -m pip install --quiet .
 # From another directory, so that the installed package is imported, not `python/ddirac`.
 echo "== pytest (python/tests)"
-cd python/tests && DDIRAC_TEST_VENV_USED="$venv" "$py" -m pytest -q
+venv_dir="$(cd "$venv" && pwd)"
+cd python/tests && DDIRAC_TEST_VENV_USED="$venv_dir" "$py" -m pytest -q
 
 echo "== the user guide: mkdocs build --strict (into site/)"
 cd ../.. && "$py" -m mkdocs build --strict --quiet
