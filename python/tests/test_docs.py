@@ -34,6 +34,8 @@ from pathlib import Path
 
 import pytest
 
+from command_line import binary
+
 REPO = Path(__file__).resolve().parents[2]
 EXECUTABLE = {"python", "console", "sh", "bash", "shell", "toml", "rust"}
 NOT_CODE = {"text", "csv", "json"}
@@ -129,13 +131,6 @@ def shell_commands(block):
     if current:
         commands.append(current)
     return commands
-
-
-def binary():
-    if os.environ.get("DDIRAC_BIN"):
-        return Path(os.environ["DDIRAC_BIN"])
-    target = Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
-    return (target if target.is_absolute() else REPO / target) / "release" / "ddirac"
 
 
 def to_argv(command):

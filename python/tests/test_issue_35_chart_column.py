@@ -2,7 +2,6 @@
 atlas (examples/spherical_pendulum.toml), with the same values, and none where trajectory.csv has none."""
 
 import csv
-import os
 import pathlib
 import subprocess
 
@@ -10,6 +9,7 @@ import numpy as np
 import pytest
 
 import ddirac
+import command_line
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 SPEC = REPO / "examples" / "spherical_pendulum.toml"
@@ -17,16 +17,9 @@ SPEC = REPO / "examples" / "spherical_pendulum.toml"
 OVERRIDES = {"time.duration": 4.0, "initial.v.phi": 0.2}
 
 
-def command_line():
-    binary = os.environ.get("DDIRAC_BIN") or REPO / "target" / "release" / "ddirac"
-    if not pathlib.Path(binary).is_file():
-        pytest.skip("the command line is not built (target/release/ddirac, or $DDIRAC_BIN)")
-    return str(binary)
-
-
 def cli_trajectory(tmp_path, overrides):
     out = tmp_path / "cli"
-    args = [command_line(), "run", str(SPEC), "--out", str(out), "--quiet"]
+    args = [command_line.built(), "run", str(SPEC), "--out", str(out), "--quiet"]
     for key, value in overrides.items():
         args += ["--set", f"{key}={str(value).lower() if isinstance(value, bool) else value}"]
     done = subprocess.run(args, capture_output=True, text=True)

@@ -3,7 +3,6 @@ measured against (labelled as convergence.csv labels it), and the observed order
 method's declared order — the order `ddirac convergence` finds for the same spec, with a verdict."""
 
 import csv
-import os
 import pathlib
 import re
 import subprocess
@@ -12,22 +11,16 @@ import warnings
 import pytest
 
 import ddirac
+import command_line
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
 
 
-def command_line():
-    binary = os.environ.get("DDIRAC_BIN") or REPO / "target" / "release" / "ddirac"
-    if not pathlib.Path(binary).is_file():
-        pytest.skip("the command line is not built (target/release/ddirac, or $DDIRAC_BIN)")
-    return str(binary)
-
-
 def cli_convergence(tmp_path, spec, steps, sets):
     """(rows of convergence.csv, the stable order and its N range as printed) of `ddirac convergence`."""
     out = tmp_path / "cli"
-    args = [command_line(), "convergence", str(spec), "--steps", ",".join(map(str, steps)), "--out", str(out)]
+    args = [command_line.built(), "convergence", str(spec), "--steps", ",".join(map(str, steps)), "--out", str(out)]
     for key, value in sets.items():
         args += ["--set", f"{key}={value}"]
     done = subprocess.run(args, capture_output=True, text=True)

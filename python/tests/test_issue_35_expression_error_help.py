@@ -9,15 +9,9 @@ import subprocess
 import pytest
 
 import ddirac
+import command_line
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
-
-
-def command_line():
-    binary = os.environ.get("DDIRAC_BIN") or REPO / "target" / "release" / "ddirac"
-    if not pathlib.Path(binary).is_file():
-        pytest.skip("the command line is not built (target/release/ddirac, or $DDIRAC_BIN)")
-    return str(binary)
 
 
 def cli_help(tmp_path, system_table, parameters):
@@ -25,7 +19,7 @@ def cli_help(tmp_path, system_table, parameters):
     spec = tmp_path / "spec.toml"
     spec.write_text(system_table + "\n[parameters]\n" + "".join(f"{k} = {v}\n" for k, v in parameters.items())
                     + "\n[time]\nstep = 0.01\nsteps = 10\n\n[initial]\nq = [0.1]\np = [0.0]\n", encoding="utf-8")
-    done = subprocess.run([command_line(), "check", str(spec)], capture_output=True, text=True,
+    done = subprocess.run([command_line.built(), "check", str(spec)], capture_output=True, text=True,
                           env={**os.environ, "NO_COLOR": "1", "COLUMNS": "1000"})
     assert done.returncode == 2, done.stderr
     text = re.sub(r"\x1b\[[0-9;]*m", "", done.stderr)
