@@ -58,20 +58,33 @@ impl<Dm: Dim> ConfigurationIn<Dm> {
     }
 
     /// Moves by the increments `dq`, re-centring each angle's chart.
-    #[inline]
+    #[inline(always)]
     pub fn advance(&mut self, dq: &Dm::Array<f64>) {
-        let (base, turns, kinds) = (self.base.as_mut(), self.turns.as_mut(), self.kinds.as_ref());
-        for (((base, turns), kind), d) in base.iter_mut().zip(turns).zip(kinds).zip(dq.as_ref()) {
+        // Every coordinate moves; an angle that leaves (−π, π] is re-centred after, off the path of a
+        // step (no branch per coordinate).
+        let (base, kinds) = (self.base.as_mut(), self.kinds.as_ref());
+        let mut outside = false;
+        for ((base, kind), d) in base.iter_mut().zip(kinds).zip(dq.as_ref()) {
             let moved = *base + d;
-            *base = match kind {
-                CoordinateKind::Real => moved,
-                CoordinateKind::Angle if -PI < moved && moved <= PI => moved,
-                CoordinateKind::Angle => {
-                    let wrapped = wrap(moved);
-                    *turns += ((moved - wrapped) / TAU).round() as i64;
-                    wrapped
-                }
-            };
+            *base = moved;
+            outside |= (*kind == CoordinateKind::Angle) & !(-PI < moved && moved <= PI);
+        }
+        if outside {
+            self.recentre();
+        }
+    }
+
+    /// Wraps each angle outside (−π, π] into it, counting its full turns.
+    #[cold]
+    fn recentre(&mut self) {
+        let (base, turns, kinds) = (self.base.as_mut(), self.turns.as_mut(), self.kinds.as_ref());
+        for ((base, turns), kind) in base.iter_mut().zip(turns).zip(kinds) {
+            let moved = *base;
+            if *kind == CoordinateKind::Angle && !(-PI < moved && moved <= PI) {
+                let wrapped = wrap(moved);
+                *turns += ((moved - wrapped) / TAU).round() as i64;
+                *base = wrapped;
+            }
         }
     }
 

@@ -284,7 +284,7 @@ impl Monitor {
     /// part and, when [`Monitor::wants_state_energy`], the energy H of the state it reached (the
     /// drift is measured on H, a function on T*Q, the same in every chart of an atlas); returns a jump
     /// when an excursion ends away from its level.
-    #[inline]
+    #[inline(always)]
     pub fn push(&mut self, at: (usize, f64), energy: f64, kinetic: f64, state: Option<f64>) -> Option<Jump> {
         let before = std::mem::replace(&mut self.previous, energy);
         // A change across a switch of charts is the new level's, not a jump (see `rebase`).

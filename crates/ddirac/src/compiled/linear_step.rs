@@ -70,11 +70,14 @@ impl<const N: usize> Copy for LinearSolution<Fixed<N>> {}
 
 impl<Dm: Dim> LinearSolution<Dm> {
     /// ‖r(z)‖∞ if everything is finite and it is at most `threshold` (Newton's residual test).
+    #[inline]
     pub fn solves(&self, threshold: f64) -> Option<f64> {
-        let finite =
-            self.z.as_ref().iter().chain(self.momenta_next.as_ref()).all(|v| v.is_finite()) && self.value.is_finite();
-        let residual = self.residual.as_ref().iter().fold(0.0f64, |m, r| m.max(r.abs()));
-        (finite && residual <= threshold).then_some(residual)
+        // Without a branch per entry: this runs every step.
+        let finite = |values: &[f64]| values.iter().fold(true, |all, v| all & v.is_finite());
+        let finite = finite(self.z.as_ref()) & finite(self.momenta_next.as_ref()) & self.value.is_finite();
+        // The largest |r_i|, NaN entries skipped (as `f64::max` skips them), one comparison each.
+        let residual = self.residual.as_ref().iter().fold(0.0f64, |m, r| if r.abs() > m { r.abs() } else { m });
+        (finite & (residual <= threshold)).then_some(residual)
     }
 }
 
@@ -116,21 +119,25 @@ impl<Dm: Dim> LinearStep<Dm> {
     /// The step from chart base `base` with momenta `momenta`. The momenta that do not advance are
     /// constants of the compiled step (a scheme conserves them): only their values given to
     /// [`LinearStep::new`] are used.
+    #[inline(always)]
     pub fn solve(&self, base: &Dm::Array<f64>, momenta: &Dm::Array<f64>) -> LinearSolution<Dm> {
         let (dim, n) = (self.dim, self.dim.n());
-        dim.scratch(|buffer| {
-            let (inputs, outputs) = buffer.split_at_mut(2 * n);
-            inputs[..n].copy_from_slice(base.as_ref());
-            inputs[n..].copy_from_slice(momenta.as_ref());
-            let outputs = &mut outputs[..1 + 3 * n];
-            self.program.call(inputs, outputs);
-            LinearSolution {
-                z: dim.array(|i| outputs[i]),
-                value: outputs[n],
-                residual: dim.array(|i| outputs[n + 1 + i]),
-                momenta_next: dim.array(|i| outputs[2 * n + 1 + i]),
-            }
-        })
+        dim.scratch(
+            #[inline(always)]
+            |buffer| {
+                let (inputs, outputs) = buffer.split_at_mut(2 * n);
+                inputs[..n].copy_from_slice(base.as_ref());
+                inputs[n..].copy_from_slice(momenta.as_ref());
+                let outputs = &mut outputs[..1 + 3 * n];
+                self.program.call(inputs, outputs);
+                LinearSolution {
+                    z: dim.array(|i| outputs[i]),
+                    value: outputs[n],
+                    residual: dim.array(|i| outputs[n + 1 + i]),
+                    momenta_next: dim.array(|i| outputs[2 * n + 1 + i]),
+                }
+            },
+        )
     }
 }
 

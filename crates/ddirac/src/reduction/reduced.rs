@@ -96,6 +96,7 @@ impl<S: Lagrangian<Dm> + Clone, Dm: Dim> Scheme<Dm> for LagrangePoincareDirac<S,
         Self { dim: self.dim, reduction, variant: self.variant, flat: self.flat }
     }
 
+    #[inline(always)]
     fn base(&self, q: &Dm::Array<f64>) -> Dm::Array<f64> {
         let mut base = q.clone();
         for &gj in &self.reduction.split.group {
@@ -120,7 +121,7 @@ impl<S: Lagrangian<Dm> + Clone, Dm: Dim> Scheme<Dm> for LagrangePoincareDirac<S,
         StepEquations { sign, advances: self.dim.array(|i| !group(i)), eliminable: self.dim.array(group) }
     }
 
-    #[inline]
+    #[inline(always)]
     fn increment(&self, z: &Dm::Vector) -> Dm::Array<f64> {
         let mut dq = self.dim.array(|i| z[i]);
         for (j, &gj) in self.reduction.split.group.iter().enumerate() {
@@ -154,7 +155,7 @@ impl<S: Lagrangian<Dm> + Clone, Dm: Dim> Scheme<Dm> for LagrangePoincareDirac<S,
     }
 
     /// p = λ̂_d⁻¹(q, w, μ).
-    #[inline]
+    #[inline(always)]
     fn p_from_momenta(&self, wm: &Dm::Array<f64>) -> Dm::Array<f64> {
         if self.flat {
             return wm.clone();

@@ -6,6 +6,7 @@ use super::resolution::Resolution;
 use super::stages::{Stages, MAX_SUBDIVISION};
 use super::{chart_watch, Context, Equipped, FirstStep, OwnedRowIn, StepReport};
 use crate::chart::ConfigurationIn;
+use crate::compiled::LinearStep;
 use crate::diagnostics::{Accumulator, NewtonSummary, Warning, WarningKind, Warnings};
 use crate::dim::Dim;
 use crate::energy_jump::{Jump, JumpAction, Monitor};
@@ -129,7 +130,7 @@ impl<Dm: Dim> Record<Dm> {
     pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>, p: &Dm::Array<f64>) {
         let j = split.momentum_map(momenta.as_ref());
         self.max_drift = j.zip(&self.j0).fold(self.max_drift, |m, (j, j0)| m.max((j - j0).abs()));
-        self.momentum_scale = p.as_ref().iter().fold(self.momentum_scale, |m, p| m.max(p.abs()));
+        self.momentum_scale = largest_magnitude(self.momentum_scale, p.as_ref());
     }
 }
 
@@ -227,6 +228,26 @@ impl<Dm: Dim> Progress<Dm> {
         stages: &Stages<Sc, Dm>,
         context: &Context<S, Dm>,
     ) -> Result<StepReport, Error> {
+        if stages.sequence.len() == 1 {
+            let e = stages.first();
+            if let Some(linear) = e.derivatives.linear_step().filter(|_| e.closed_form) {
+                if let Some(report) = self.step_closed_form(e, linear, context) {
+                    return report;
+                }
+            }
+        }
+        self.step_solved(stages, context)
+    }
+
+    /// Takes step k by solving its equations (Newton's method, or the closed-form step with Newton's
+    /// method as its fall-back) and testing the solution; sub-steps where the solve fails or its
+    /// energy is implausible.
+    #[inline]
+    fn step_solved<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
+        &mut self,
+        stages: &Stages<Sc, Dm>,
+        context: &Context<S, Dm>,
+    ) -> Result<StepReport, Error> {
         let taken = if stages.sequence.len() == 1 {
             self.take_basic(stages.first(), context)
         } else {
@@ -245,17 +266,66 @@ impl<Dm: Dim> Progress<Dm> {
         self.commit(taken, context)
     }
 
+    /// Takes step k by the compiled closed-form step `linear` of the basic method when its solution
+    /// passes every test [`Progress::step_solved`] makes of it — Newton's residual test, a finite
+    /// state, a plausible energy — with the same arithmetic, so that the step is bit for bit the one
+    /// [`Progress::step_solved`] takes. `None` (nothing changed) otherwise: [`Progress::step_solved`]
+    /// then solves the step again and deals with it (a fall-back to Newton's method, an error, or
+    /// sub-steps). The solution goes from the program's outputs to the new state without the
+    /// intermediate records of a solve that may fail.
+    #[inline(always)]
+    fn step_closed_form<S: SystemIn<Dm>, Sc: Scheme<Dm>>(
+        &mut self,
+        e: &Equipped<Sc, Dm>,
+        linear: &LinearStep<Dm>,
+        context: &Context<S, Dm>,
+    ) -> Option<Result<StepReport, Error>> {
+        let dim = context.dim;
+        let base = e.scheme.base(self.config.base());
+        let s = linear.solve(&base, &self.momenta);
+        // As `solve_step`: Newton's residual test with the momenta's scale.
+        let scale = largest_magnitude(0.0, self.momenta.as_ref());
+        let residual = s.solves(context.method.newton.threshold(scale))?;
+        let z = dim.vector(|i| s.z[i]);
+        let dq = e.scheme.increment(&z);
+        // As `take_basic` (the momenta and the discrete energy are finite by the residual test).
+        if !all_finite(dq.as_ref()) {
+            return None;
+        }
+        let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
+            let p_next = e.scheme.p_from_momenta(&s.momenta_next);
+            let pv = pv_sum::<Dm>(&self.p_now, &p_next, &dq);
+            (pv, p_next)
+        });
+        if let Some((pv, _)) = &pv {
+            if self.implausible_change(*pv, s.value, context.h).is_some() {
+                return None;
+            }
+        }
+        let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
+        let (momenta_next, discrete_energy) = (s.momenta_next, s.value);
+        let taken = Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back: false, z, composed: None };
+        Some(self.commit(taken, context))
+    }
+
     /// Why a solved step cannot be trusted, if it cannot: its discrete energy (when the energy is
     /// watched) moved from the last step's by more than [`IMPLAUSIBLE_ENERGY_CHANGE`] of its scale.
     #[inline]
     fn implausible<S: SystemIn<Dm>>(&self, taken: &Taken<Dm>, context: &Context<S, Dm>) -> Option<Error> {
         let (pv, _) = taken.pv.as_ref()?;
-        let pv = *pv;
-        let h = context.h;
-        let (pv, energy) = (pv / h, pv / h - taken.discrete_energy / h);
+        let relative = self.implausible_change(*pv, taken.discrete_energy, context.h)?;
+        Some(implausible_energy(self.k, context.h, relative))
+    }
+
+    /// The change of the discrete energy from the last step's, relative to its scale, of a step with
+    /// Σ⟨p̄, Δq⟩ = `pv` and discrete energy `discrete_energy`, if it exceeds
+    /// [`IMPLAUSIBLE_ENERGY_CHANGE`].
+    #[inline(always)]
+    fn implausible_change(&self, pv: f64, discrete_energy: f64, h: f64) -> Option<f64> {
+        let (pv, energy) = (pv / h, pv / h - discrete_energy / h);
         let scale = self.last_energy.abs().max(pv.abs());
         let change = (energy - self.last_energy).abs();
-        (change > IMPLAUSIBLE_ENERGY_CHANGE * scale).then(|| implausible_energy(self.k, context.h, change / scale))
+        (change > IMPLAUSIBLE_ENERGY_CHANGE * scale).then(|| change / scale)
     }
 
     /// Takes step k, which failed with `failure` (or was `solved` implausibly), as m = 2, 4, … up to
@@ -351,7 +421,7 @@ impl<Dm: Dim> Progress<Dm> {
             solve_step(e, &base, &self.momenta, &memory.predictor, &mut memory.kept, &context.method.newton)
                 .map_err(|f| newton_failed(context, k, self.config.base(), &e.scheme, &memory.predictor, f))?;
         let dq = e.scheme.increment(&z);
-        if dq.as_ref().iter().chain(momenta_next.as_ref()).any(|v| !v.is_finite()) || !discrete_energy.is_finite() {
+        if !(all_finite(dq.as_ref()) & all_finite(momenta_next.as_ref()) & discrete_energy.is_finite()) {
             return Err(Error::Diverged { step: k, t, h, what: "state" });
         }
         let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
@@ -444,14 +514,20 @@ impl<Dm: Dim> Progress<Dm> {
             record.warnings.push(Warning::new(WarningKind::NewtonFallback, Some((k, t)), message.into()));
         }
         let canonical = pv.is_some();
-        let jump = pv.and_then(|(pv, p_next)| {
-            let pv = pv / h;
-            self.last_energy = pv - discrete_energy / h;
-            let state =
-                self.monitor.wants_state_energy().then(|| state_energy(context, &self.config, &composed, &dq, &p_next));
-            self.p_now = p_next;
-            self.monitor.push((k, t), self.last_energy, pv.abs(), state)
-        });
+        let jump = match pv {
+            Some((pv, p_next)) => {
+                let pv = pv / h;
+                self.last_energy = pv - discrete_energy / h;
+                let state = if self.monitor.wants_state_energy() {
+                    Some(state_energy(context, &self.config, &composed, &dq, &p_next))
+                } else {
+                    None
+                };
+                self.p_now = p_next;
+                self.monitor.push((k, t), self.last_energy, pv.abs(), state)
+            }
+            None => None,
+        };
         let jump = jump.map(|jump| {
             let cause = singular_chart(context, self.config.base(), &dq);
             (jump, cause)
@@ -587,6 +663,19 @@ struct Taken<Dm: Dim> {
     composed: Option<(ConfigurationIn<Dm>, Vec<Dm::Vector>)>,
 }
 
+/// The largest of `start` (not NaN) and the |v| of `values`, NaN entries skipped: the fold of
+/// `f64::max` over them, in one comparison per entry.
+#[inline(always)]
+pub(super) fn largest_magnitude(start: f64, values: &[f64]) -> f64 {
+    values.iter().fold(start, |m, v| if v.abs() > m { v.abs() } else { m })
+}
+
+/// Whether every entry is finite, without a branch per entry.
+#[inline(always)]
+fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |all, v| all & v.is_finite())
+}
+
 /// ½ Σ (p0 + p1) · dq: ⟨p̄, Δq⟩ of a step from p0 to p1.
 #[inline(always)]
 fn pv_sum<Dm: Dim>(p0: &Dm::Array<f64>, p1: &Dm::Array<f64>, dq: &Dm::Array<f64>) -> f64 {
@@ -645,7 +734,7 @@ fn solve_step<Sc: Scheme<Dm>, Dm: Dim>(
 ) -> Result<Solved<Dm>, newton::NewtonFailure> {
     let Equipped { scheme, equations, derivatives, .. } = e;
     let dim = predictor.dim;
-    let scale = momenta.as_ref().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = largest_magnitude(0.0, momenta.as_ref());
     let closed_form = derivatives.linear_step().filter(|_| e.closed_form).map(|l| l.solve(base, momenta));
     let fell_back = closed_form.is_some();
     let mut z = match closed_form {
@@ -682,27 +771,29 @@ fn solve_step<Sc: Scheme<Dm>, Dm: Dim>(
 #[derive(Debug, Clone)]
 pub(super) struct Predictor<Dm: Dim> {
     dim: Dm,
+    /// The last three unknowns, a ring: the newest at `newest`, the older ones after it (cyclically).
     last: [Dm::Vector; 3],
+    newest: usize,
     count: usize,
 }
 
 impl<Dm: Dim> Predictor<Dm> {
     fn new(dim: Dm, first: Dm::Vector) -> Self {
-        Self { dim, last: [first.clone(), first.clone(), first], count: 0 }
+        Self { dim, last: [first.clone(), first.clone(), first], newest: 0, count: 0 }
     }
 
+    /// Takes the unknowns of a step: they overwrite the oldest, which becomes the newest (no copies of
+    /// the others).
     #[inline]
     fn push(&mut self, z: Dm::Vector) {
-        // [z, z₀, z₁] from [z₀, z₁, z₂], by swaps that inline (a rotation of the slice calls memmove).
-        let [a, b, c] = &mut self.last;
-        std::mem::swap(b, c);
-        std::mem::swap(a, b);
-        *a = z;
+        self.newest = if self.newest == 0 { 2 } else { self.newest - 1 };
+        self.last[self.newest] = z;
         self.count += 1;
     }
 
     pub(super) fn predict(&self) -> Dm::Vector {
-        let [z, z1, z2] = &self.last;
+        let at = |age: usize| &self.last[(self.newest + age) % 3];
+        let (z, z1, z2) = (at(0), at(1), at(2));
         match self.count {
             0 | 1 => z.clone(),
             2 => self.dim.vector(|i| 2.0 * z[i] - z1[i]),
