@@ -1,6 +1,7 @@
 //! Errors of the library.
 
 use crate::newton::FailureReason;
+use std::fmt;
 
 /// Everything that can go wrong in setting up or running an integration.
 #[derive(Debug, thiserror::Error)]
@@ -37,7 +38,7 @@ pub enum Error {
     /// Newton's method failed on a step.
     #[error(
         "step {step} (t = {}, h = {}): Newton's method failed after {iterations} iteration(s): {reason} \
-         (residual {residual:.3e}); {}", Time(*t), Time(*h), cause.as_deref().unwrap_or(reason.hint())
+         (residual {residual:.3e}); {}", Time(*t), Time(*h), NewtonCause(*reason, singular.as_ref(), *sub_steps)
     )]
     Newton {
         /// Index k of the step q_k → q_{k+1}.
@@ -52,12 +53,13 @@ pub enum Error {
         residual: f64,
         /// Why it stopped.
         reason: FailureReason,
-        /// What the run saw there that explains the failure, when it saw something (the chart watch:
-        /// a near-singular Legendre map); it replaces the reason's generic hint.
-        cause: Option<String>,
+        /// What the chart watch saw at the predicted step, when it saw it: the Legendre map near-singular.
+        singular: Option<SingularLegendre>,
+        /// The most sub-steps the step was also tried as (2, 4, …, this), when it was subdivided.
+        sub_steps: Option<usize>,
     },
     /// The state became NaN or infinite.
-    #[error("step {step} (t = {}, h = {}): the {what} became non-finite", Time(*t), Time(*h))]
+    #[error("step {step} (t = {}, h = {}): the state became non-finite", Time(*t), Time(*h))]
     Diverged {
         /// Index k of the step.
         step: usize,
@@ -65,8 +67,6 @@ pub enum Error {
         t: f64,
         /// The run's step h.
         h: f64,
-        /// Which quantity.
-        what: &'static str,
     },
     /// The discrete Lagrangian is not invariant under the symmetry, so it cannot be reduced.
     #[error(
@@ -127,7 +127,7 @@ pub enum Error {
     },
     /// The energy of a step jumped (see [`crate::diagnostics::WarningKind::EnergyJump`]) and the
     /// method asks for this to be an error.
-    #[error("step {step} (t = {}, h = {}): {message}", Time(*t), Time(*h))]
+    #[error("step {step} (t = {}, h = {}): {change}{}", Time(*t), Time(*h), Cause(singular.as_ref()))]
     EnergyJump {
         /// Index k of the step.
         step: usize,
@@ -135,8 +135,10 @@ pub enum Error {
         t: f64,
         /// The run's step h.
         h: f64,
-        /// What jumped, by how much.
-        message: String,
+        /// How the energy moved.
+        change: EnergyChange,
+        /// What the chart watch saw there, when it saw it: the Legendre map near-singular.
+        singular: Option<SingularLegendre>,
     },
     /// The run was asked to stop ([`crate::interrupt::request`]) and stopped before step `step`.
     #[error("interrupted before step {step} (t = {})", Time(*t))]
@@ -177,6 +179,99 @@ pub enum Error {
     /// The consumer of the output rows failed (e.g. a full disk).
     #[error("writing output failed: {0}")]
     Output(#[source] Box<dyn std::error::Error + Send + Sync>),
+}
+
+/// The Legendre map ∂²L/∂v² near-singular where a step failed or the energy jumped: the coordinates
+/// are singular nearby (a pole of spherical coordinates, say). What the chart watch reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SingularLegendre {
+    /// The coordinate along which ∂²L/∂v² is nearest to singular.
+    pub coordinate: String,
+    /// Its smallest pivot over its largest here.
+    pub ratio: f64,
+    /// The same ratio at the start of the run.
+    pub at_start: f64,
+}
+
+impl fmt::Display for SingularLegendre {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (ratio, at_start, name) = (self.ratio, self.at_start, &self.coordinate);
+        write!(
+            f,
+            "the Legendre map ∂²L/∂v² is near-singular here (its smallest pivot is {ratio:.1e} of its largest, \
+             against {at_start:.1e} at the start), along `{name}`: the coordinates are singular nearby (a pole \
+             of spherical coordinates, say), so `{name}` and its momentum are ill-conditioned"
+        )
+    }
+}
+
+/// How the energy of a step moved when it failed the run ([`Error::EnergyJump`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EnergyChange {
+    /// The energy jumped and did not come back (the energy watch, [`crate::diagnostics::WarningKind::EnergyJump`]).
+    Jumped(crate::energy_jump::Jump),
+    /// One step moved the discrete energy by `relative` of its scale, more than `limit`, which no
+    /// step that resolves the motion does.
+    Implausible {
+        /// The change over the energy's scale.
+        relative: f64,
+        /// The largest change a resolved step makes, relative.
+        limit: f64,
+    },
+}
+
+impl fmt::Display for EnergyChange {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EnergyChange::Jumped(jump) => f.write_str(&jump.describe()),
+            EnergyChange::Implausible { relative, limit } => write!(
+                f,
+                "its discrete energy moved by {:.1} % from the last step's, more than the {} % a resolved step moves it",
+                relative * 100.0,
+                limit * 100.0
+            ),
+        }
+    }
+}
+
+/// "; " and the cause, when there is one.
+struct Cause<'a>(Option<&'a SingularLegendre>);
+
+impl fmt::Display for Cause<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(cause) => write!(f, "; {cause}"),
+            None => Ok(()),
+        }
+    }
+}
+
+/// What explains a failure of Newton's method: what the chart watch saw and the sub-steps tried, or
+/// else what a user can try about the reason.
+struct NewtonCause<'a>(FailureReason, Option<&'a SingularLegendre>, Option<usize>);
+
+impl fmt::Display for NewtonCause<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let tried = self.2.map(|m| format!("nor as 2, 4, …, {m} sub-steps"));
+        match (self.1, tried) {
+            (Some(singular), Some(tried)) => write!(f, "{singular}; {tried}"),
+            (Some(singular), None) => write!(f, "{singular}"),
+            (None, Some(tried)) => f.write_str(&tried),
+            (None, None) => f.write_str(hint(self.0)),
+        }
+    }
+}
+
+/// What a user can try about a failure of Newton's method on a step.
+fn hint(reason: FailureReason) -> &'static str {
+    match reason {
+        FailureReason::NotConverged => "try a smaller step, a looser tolerance or more iterations",
+        FailureReason::SingularJacobian => {
+            "the step equations are degenerate here: for a reduced run check that the Lagrangian is \
+             invariant (the check of the run's hypotheses); otherwise try a smaller step"
+        }
+        FailureReason::NonFinite => "try a smaller step; check the Lagrangian for singular points",
+    }
 }
 
 /// The input an error is about: a field of [`crate::Problem`], [`crate::Method`] or

@@ -96,20 +96,6 @@ pub enum FailureReason {
     NonFinite,
 }
 
-impl FailureReason {
-    /// What a user can try about it.
-    pub fn hint(self) -> &'static str {
-        match self {
-            FailureReason::NotConverged => "try a smaller step, a looser tolerance or more iterations",
-            FailureReason::SingularJacobian => {
-                "the step equations are degenerate here: for a reduced run check that the Lagrangian is \
-                 invariant (`ddirac check`); otherwise try a smaller step"
-            }
-            FailureReason::NonFinite => "try a smaller step; check the Lagrangian for singular points",
-        }
-    }
-}
-
 impl std::fmt::Display for FailureReason {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {

@@ -20,7 +20,7 @@
 use crate::dim::Dim;
 use crate::mechanics::lagrangian::SystemIn;
 use crate::mechanics::legendre;
-use crate::CoordinateKind;
+use crate::{CoordinateKind, SingularLegendre};
 
 /// The largest advance of an angle in one step, in radians, that a run accepts without a warning. A
 /// second-order step that turns an angle by a radian resolves a period with about six steps.
@@ -139,18 +139,14 @@ pub(super) fn singular_chart<S: SystemIn<Dm>, Dm: Dim>(
     at_start: f64,
     q: &Dm::Array<f64>,
     v: &Dm::Array<f64>,
-) -> Option<String> {
+) -> Option<SingularLegendre> {
     if at_start.is_nan() || at_start <= 0.0 || v.as_ref().iter().any(|x| !x.is_finite()) {
         return None;
     }
     let (ratio, along) = legendre::conditioning_in(system.dim(), system, q, v);
-    (ratio < LEGENDRE_DROP * at_start).then(|| {
-        let coordinates = system.coordinates();
-        let name = &coordinates[along].name;
-        format!(
-            "the Legendre map ∂²L/∂v² is near-singular here (its smallest pivot is {ratio:.1e} of its largest, \
-             against {at_start:.1e} at the start), along `{name}`: the coordinates are singular nearby (a pole \
-             of spherical coordinates, say), so `{name}` and its momentum are ill-conditioned"
-        )
+    (ratio < LEGENDRE_DROP * at_start).then(|| SingularLegendre {
+        coordinate: system.coordinates()[along].name.clone(),
+        ratio,
+        at_start,
     })
 }

@@ -13,7 +13,7 @@ use crate::energy_jump::{Jump, JumpAction, Monitor};
 use crate::mechanics::lagrangian::SystemIn;
 use crate::mechanics::legendre;
 use crate::scheme::Scheme;
-use crate::{newton, CoordinateKind, Error, Method, Split};
+use crate::{newton, CoordinateKind, EnergyChange, Error, Method, SingularLegendre, Split};
 
 /// Everything a step changes: the state of step k, the solver's memory and the run's record.
 #[derive(Debug)]
@@ -397,10 +397,8 @@ impl<Dm: Dim> Progress<Dm> {
             return Ok(solved);
         }
         Err(match failure {
-            Error::Newton { step, t, h, iterations, residual, reason, cause } => {
-                let tried = format!("nor as 2, 4, …, {MAX_SUBDIVISION} sub-steps");
-                let cause = Some(cause.map_or(tried.clone(), |c| format!("{c}; {tried}")));
-                Error::Newton { step, t, h, iterations, residual, reason, cause }
+            Error::Newton { step, t, h, iterations, residual, reason, singular, .. } => {
+                Error::Newton { step, t, h, iterations, residual, reason, singular, sub_steps: Some(MAX_SUBDIVISION) }
             }
             other => other,
         })
@@ -422,7 +420,7 @@ impl<Dm: Dim> Progress<Dm> {
                 .map_err(|f| newton_failed(context, k, self.config.base(), &e.scheme, &memory.predictor, f))?;
         let dq = e.scheme.increment(&z);
         if !(all_finite(dq.as_ref()) & all_finite(momenta_next.as_ref()) & discrete_energy.is_finite()) {
-            return Err(Error::Diverged { step: k, t, h, what: "state" });
+            return Err(Error::Diverged { step: k, t, h });
         }
         let pv = (context.method.energy_jump.action != JumpAction::Ignore).then(|| {
             let p_next = e.scheme.p_from_momenta(&momenta_next);
@@ -462,7 +460,7 @@ impl<Dm: Dim> Progress<Dm> {
             let dq = e.scheme.increment(&solved.z);
             let finite = dq.as_ref().iter().chain(solved.momenta_next.as_ref()).all(|v| v.is_finite());
             if !finite || !solved.discrete_energy.is_finite() {
-                return Err(Error::Diverged { step: k, t, h, what: "state" });
+                return Err(Error::Diverged { step: k, t, h });
             }
             if watching {
                 let p_next = e.scheme.p_from_momenta(&solved.momenta_next);
@@ -622,7 +620,7 @@ fn singular_chart<S: SystemIn<Dm>, Dm: Dim>(
     context: &Context<S, Dm>,
     q: &Dm::Array<f64>,
     dq: &Dm::Array<f64>,
-) -> Option<String> {
+) -> Option<SingularLegendre> {
     let v = context.dim.array(|i| dq[i] / context.h);
     chart_watch::singular_chart(&context.system, context.legendre_at_start, q, &v)
 }
@@ -631,19 +629,19 @@ fn singular_chart<S: SystemIn<Dm>, Dm: Dim>(
 #[cold]
 pub(super) fn jumped(
     jump: Jump,
-    cause: Option<String>,
+    cause: Option<SingularLegendre>,
     action: JumpAction,
     h: f64,
     warnings: &mut Warnings,
 ) -> Result<(), Error> {
+    if action == JumpAction::Fail {
+        let (step, t) = jump.at;
+        return Err(Error::EnergyJump { step, t, h, change: EnergyChange::Jumped(jump), singular: cause });
+    }
     let message = match cause {
         Some(cause) => format!("{}; {cause}", jump.describe()),
         None => jump.describe(),
     };
-    if action == JumpAction::Fail {
-        let (step, t) = jump.at;
-        return Err(Error::EnergyJump { step, t, h, message });
-    }
     warnings.push(Warning::new(WarningKind::EnergyJump, Some(jump.at), message));
     Ok(())
 }
@@ -685,12 +683,8 @@ fn pv_sum<Dm: Dim>(p0: &Dm::Array<f64>, p1: &Dm::Array<f64>, dq: &Dm::Array<f64>
 /// The failure of a step whose discrete energy moved by `relative` of its scale.
 #[cold]
 fn implausible_energy(k: usize, h: f64, relative: f64) -> Error {
-    let message = format!(
-        "its discrete energy moved by {:.1} % from the last step's, more than the {} % a resolved step moves it",
-        relative * 100.0,
-        IMPLAUSIBLE_ENERGY_CHANGE * 100.0
-    );
-    Error::EnergyJump { step: k, t: k as f64 * h, h, message }
+    let change = EnergyChange::Implausible { relative, limit: IMPLAUSIBLE_ENERGY_CHANGE };
+    Error::EnergyJump { step: k, t: k as f64 * h, h, change, singular: None }
 }
 
 /// The error of a failed solve at step k from `q`, with the chart watch's diagnosis at the
@@ -705,9 +699,10 @@ fn newton_failed<S: SystemIn<Dm>, Sc: Scheme<Dm>, Dm: Dim>(
     f: newton::NewtonFailure,
 ) -> Error {
     let predicted = scheme.increment(&predictor.predict());
-    let cause = singular_chart(context, q, &predicted);
+    let singular = singular_chart(context, q, &predicted);
     let (h, t) = (context.h, k as f64 * context.h);
-    Error::Newton { step: k, t, h, iterations: f.iterations, residual: f.residual, reason: f.reason, cause }
+    let (iterations, residual, reason) = (f.iterations, f.residual, f.reason);
+    Error::Newton { step: k, t, h, iterations, residual, reason, singular, sub_steps: None }
 }
 
 /// A solved step: its unknowns, the momenta and discrete energy they give, and how the solve went.

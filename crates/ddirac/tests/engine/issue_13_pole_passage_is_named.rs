@@ -65,8 +65,10 @@ fn a_newton_failure_at_the_pole_names_the_singular_chart_instead_of_a_generic_hi
             let text = e.to_string();
             assert!(text.contains("the Legendre map ∂²L/∂v² is near-singular here"), "{text}");
             assert!(text.contains("along `phi`"), "{text}");
-            let Error::Newton { cause, .. } = e else { unreachable!() };
-            assert!(cause.is_some());
+            // The cause is typed: the coordinate, and a conditioning far below the start's.
+            let Error::Newton { singular: Some(singular), .. } = e else { panic!("no cause in {e:?}") };
+            assert_eq!(singular.coordinate, "phi");
+            assert!(singular.ratio < 1e-2 * singular.at_start, "{singular:?}");
         }
         Err(other) => panic!("another error: {other}"),
         Ok(solution) => {

@@ -49,6 +49,7 @@ mod issue_30_energy_watch_spans_chart_switches;
 mod issue_30_loose_tolerance_never_accepts_the_predictor;
 mod issue_30_pi_is_not_a_name;
 mod issue_30_unresolved_pole_passage_warns;
+mod issue_31_error_fields_are_typed;
 mod kepler_and_top;
 mod legendre_velocity_stops_at_round_off;
 mod minus_variant;
