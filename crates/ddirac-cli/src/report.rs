@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use ddirac::{InitialMomentum, Stats, Summary};
+use ddirac::{Coordinate, InitialMomentum, Method, OutputOptions, Problem, Stats, Summary};
 use serde::Serialize;
 
 use crate::spec::Plan;
@@ -11,7 +11,8 @@ use crate::spec::Plan;
 #[derive(Serialize)]
 pub struct SummaryJson<'a> {
     ddirac_version: &'static str,
-    spec: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    spec: Option<String>,
     system: &'a str,
     parameters: Parameters<'a>,
     coordinates: &'a [String],
@@ -30,7 +31,8 @@ pub struct SummaryJson<'a> {
     derivatives: String,
     newton: NewtonJson,
     wall_seconds: f64,
-    total_wall_seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    total_wall_seconds: Option<f64>,
     reference_error: Option<f64>,
     chart_switches: usize,
     warnings: Vec<WarningJson>,
@@ -141,31 +143,68 @@ struct NewtonJson {
     max_subdivision: usize,
 }
 
-/// The content of `summary.json`.
+/// What a run was, besides the library's [`Summary`] of it: what `summary.json` records of the
+/// system, the problem, the method and the output, and of the run's file and whole time when it
+/// ran from a spec file.
+pub struct RunRecord<'a> {
+    /// The system's name (a built-in's, or the spec's `system.name`).
+    pub system: &'a str,
+    /// Its parameters, in its order.
+    pub parameters: &'a [(String, f64)],
+    /// Its coordinates (which are angles; the shape of the connection).
+    pub coordinates: Vec<Coordinate>,
+    /// The problem run.
+    pub problem: &'a Problem,
+    /// The method it ran with.
+    pub method: &'a Method,
+    /// The rows kept.
+    pub output: &'a OutputOptions,
+    /// The spec file's path, for a run of a file.
+    pub spec: Option<String>,
+    /// The whole command's time, for a run of a file.
+    pub total_seconds: Option<f64>,
+}
+
+/// The content of `summary.json` of a run from a spec file.
 pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total_seconds: f64) -> SummaryJson<'a> {
-    let (method, problem) = (&plan.method, &plan.problem);
+    let record = RunRecord {
+        system: &plan.name,
+        parameters: &plan.parameters,
+        coordinates: plan.system.coordinates(),
+        problem: &plan.problem,
+        method: &plan.method,
+        output: &plan.output,
+        spec: Some(spec.display().to_string()),
+        total_seconds: Some(total_seconds),
+    };
+    summary_json_of(record, summary)
+}
+
+/// The content of `summary.json` of any run: what the command line writes and the Python module
+/// returns as a run's `summary`, from one definition.
+pub fn summary_json_of<'a>(record: RunRecord<'a>, summary: &'a Summary) -> SummaryJson<'a> {
+    let (method, problem) = (record.method, record.problem);
     let (p, v) = match &problem.initial {
         InitialMomentum::Momentum(p) => (Some(p.as_slice()), None),
         InitialMomentum::Velocity(v) => (None, Some(v.as_slice())),
     };
     SummaryJson {
         ddirac_version: env!("CARGO_PKG_VERSION"),
-        spec: spec.display().to_string(),
-        system: &plan.name,
-        parameters: Parameters(&plan.parameters),
+        spec: record.spec,
+        system: record.system,
+        parameters: Parameters(record.parameters),
         coordinates: &summary.coordinates,
-        angles: plan
-            .system
-            .coordinates()
-            .into_iter()
+        angles: record
+            .coordinates
+            .iter()
             .filter(|c| c.kind == ddirac::CoordinateKind::Angle)
-            .map(|c| c.name)
+            .map(|c| c.name.clone())
             .collect(),
         method: MethodJson {
             rule: method.rule.name(),
             variant: method.variant.name(),
             reduced: method.reduced,
-            connection: connection(plan),
+            connection: connection(method, &record.coordinates),
             tolerance: method.newton.tolerance,
             max_iterations: method.newton.max_iterations,
             check_invariance: method.check_invariance,
@@ -181,7 +220,7 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
         step: summary.step,
         duration: summary.step * summary.steps as f64,
         initial: InitialJson { q: &problem.q0, p, v },
-        output: OutputJson { every: plan.output.every, wrap_angles: plan.output.wrap_angles },
+        output: OutputJson { every: record.output.every, wrap_angles: record.output.wrap_angles },
         final_state: FinalJson { q: &summary.final_q, p: &summary.final_p },
         energy: StatsJson::new(&summary.energy, true),
         discrete_energy: StatsJson::new(&summary.discrete_energy, false),
@@ -201,17 +240,16 @@ pub fn summary_json<'a>(plan: &'a Plan, summary: &'a Summary, spec: &Path, total
             max_subdivision: summary.newton.max_subdivision,
         },
         wall_seconds: summary.wall_seconds,
-        total_wall_seconds: total_seconds,
+        total_wall_seconds: record.total_seconds,
         reference_error: summary.reference_error,
         chart_switches: summary.chart_switches,
         warnings: summary.warnings.iter().map(WarningJson::new).collect(),
     }
 }
 
-/// K as written to the summary: the spec's rows, or zeros of the right shape.
-fn connection(plan: &Plan) -> Vec<Vec<f64>> {
-    plan.method.connection.as_ref().map(ddirac::Connection::rows).unwrap_or_else(|| {
-        let coordinates = plan.system.coordinates();
+/// K as written to the summary: the method's rows, or zeros of the right shape.
+fn connection(method: &Method, coordinates: &[Coordinate]) -> Vec<Vec<f64>> {
+    method.connection.as_ref().map(ddirac::Connection::rows).unwrap_or_else(|| {
         let n_x = coordinates.iter().filter(|c| c.role == ddirac::Role::Shape).count();
         vec![vec![0.0; n_x]; coordinates.len() - n_x]
     })

@@ -14,6 +14,7 @@ use pyo3::types::{PyDict, PyList};
 
 use crate::error::{engine, raise};
 use crate::system::SystemHandle;
+use ddirac_cli::report::{summary_json_of, RunRecord};
 
 /// The method keys of a run, as a spec's `[method]` table names them (a dict from Python).
 #[derive(FromPyObject)]
@@ -321,7 +322,8 @@ pub(crate) fn interruptible_with<T: Send + 'static>(
     })
 }
 
-/// The summary with the keys of `summary.json` that a run from Python has.
+/// The summary as the dict of `summary.json` (the command line's definition, [`summary_json_of`]),
+/// without what only a run of a file has (`spec`, `total_wall_seconds`).
 fn summary_dict<'py>(
     py: Python<'py>,
     system: &SystemHandle,
@@ -330,87 +332,19 @@ fn summary_dict<'py>(
     method: &Method,
     output: &OutputOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("ddirac_version", env!("CARGO_PKG_VERSION"))?;
-    d.set_item("system", &system.name)?;
-    let parameters = PyDict::new(py);
-    for (name, value) in &system.parameters {
-        parameters.set_item(name, value)?;
-    }
-    d.set_item("parameters", parameters)?;
-    d.set_item("coordinates", &s.coordinates)?;
-    let coordinates = system.inner.coordinates();
-    let angles: Vec<&str> =
-        coordinates.iter().filter(|c| c.kind == ddirac::CoordinateKind::Angle).map(|c| c.name.as_str()).collect();
-    d.set_item("angles", angles)?;
-    let split = ddirac::Split::new(&coordinates);
-    let m = PyDict::new(py);
-    m.set_item("rule", method.rule.name())?;
-    m.set_item("variant", method.variant.name())?;
-    m.set_item("reduced", method.reduced)?;
-    let zero = || vec![vec![0.0; split.n_x()]; split.n_g()];
-    m.set_item("connection", method.connection.as_ref().map_or_else(zero, Connection::rows))?;
-    m.set_item("tolerance", method.newton.tolerance)?;
-    m.set_item("max_iterations", method.newton.max_iterations)?;
-    m.set_item("check_invariance", method.check_invariance)?;
-    m.set_item("derivatives", method.differentiation.name())?;
-    m.set_item("on_energy_jump", method.energy_jump.action.name())?;
-    m.set_item("energy_jump_threshold", method.energy_jump.threshold)?;
-    m.set_item("order", method.composition.order())?;
-    m.set_item("composition", method.composition.name())?;
-    m.set_item("stages", method.composition.coefficients().len())?;
-    m.set_item("atlas", method.atlas)?;
-    d.set_item("method", m)?;
-    d.set_item("steps", s.steps)?;
-    d.set_item("step", s.step)?;
-    d.set_item("duration", s.step * s.steps as f64)?;
-    let initial = PyDict::new(py);
-    initial.set_item("q", &problem.q0)?;
-    match &problem.initial {
-        InitialMomentum::Momentum(p) => initial.set_item("p", p)?,
-        InitialMomentum::Velocity(v) => initial.set_item("v", v)?,
-    }
-    d.set_item("initial", initial)?;
-    let out = PyDict::new(py);
-    out.set_item("every", output.every)?;
-    out.set_item("wrap_angles", output.wrap_angles)?;
-    d.set_item("output", out)?;
-    let last = PyDict::new(py);
-    last.set_item("q", &s.final_q)?;
-    last.set_item("p", &s.final_p)?;
-    d.set_item("final", last)?;
-    let stats = |stats: &ddirac::Stats, with_initial: bool| -> PyResult<Bound<'py, PyDict>> {
-        let e = PyDict::new(py);
-        if with_initial {
-            e.set_item("initial", stats.initial)?;
-        }
-        e.set_item("min", stats.min)?;
-        e.set_item("max", stats.max)?;
-        e.set_item("mean", stats.mean)?;
-        Ok(e)
+    let record = RunRecord {
+        system: &system.name,
+        parameters: &system.parameters,
+        coordinates: system.inner.coordinates(),
+        problem,
+        method,
+        output,
+        spec: None,
+        total_seconds: None,
     };
-    d.set_item("energy", stats(&s.energy, true)?)?;
-    d.set_item("discrete_energy", stats(&s.discrete_energy, false)?)?;
-    let j = PyDict::new(py);
-    j.set_item("initial", &s.momentum_map.initial)?;
-    j.set_item("max_drift", s.momentum_map.max_drift)?;
-    j.set_item("scale", s.momentum_map.scale)?;
-    j.set_item("max_relative_drift", s.momentum_map.max_relative_drift)?;
-    d.set_item("momentum_map", j)?;
-    d.set_item("derivatives", s.derivatives.to_string())?;
-    let newton = PyDict::new(py);
-    newton.set_item("total_iterations", s.newton.total_iterations)?;
-    newton.set_item("total_jacobians", s.newton.total_jacobians)?;
-    newton.set_item("max_iterations", s.newton.max_iterations)?;
-    newton.set_item("max_residual", s.newton.max_residual)?;
-    newton.set_item("subdivided_steps", s.newton.subdivided_steps)?;
-    newton.set_item("max_subdivision", s.newton.max_subdivision)?;
-    d.set_item("newton", newton)?;
-    d.set_item("wall_seconds", s.wall_seconds)?;
-    d.set_item("reference_error", s.reference_error)?;
-    d.set_item("chart_switches", s.chart_switches)?;
-    d.set_item("warnings", warnings(py, &s.warnings)?)?;
-    Ok(d)
+    let text = serde_json::to_string(&summary_json_of(record, s))
+        .map_err(|e| raise(format!("the summary cannot be written as JSON: {e}")))?;
+    Ok(py.import("json")?.call_method1("loads", (text,))?.cast_into::<PyDict>()?)
 }
 
 /// Warnings as `summary.json` lists them: `{kind, step, t, message, count}` each.
