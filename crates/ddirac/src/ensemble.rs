@@ -127,7 +127,7 @@ fn run_with<'a>(
         }
     };
     if output.every == 0 {
-        return Ok((refused(Error::Invalid { what: Input::Every, why: "must be at least 1".into() }), false));
+        return Ok((refused(Error::Invalid { what: Input::Every, why: crate::Reason::Zero }), false));
     }
     let renewed = match slot.as_mut().map(|stepper| stepper.renew(problem)) {
         Some(Ok(renewed)) => renewed,

@@ -33,7 +33,7 @@ pub enum Error {
         /// Which input.
         what: Input,
         /// Why it is rejected.
-        why: String,
+        why: Reason,
     },
     /// Newton's method failed on a step.
     #[error(
@@ -179,6 +179,205 @@ pub enum Error {
     /// The consumer of the output rows failed (e.g. a full disk).
     #[error("writing output failed: {0}")]
     Output(#[source] Box<dyn std::error::Error + Send + Sync>),
+}
+
+/// Why an input is rejected ([`Error::Invalid`]): the rule it breaks and the numbers that break it.
+/// Its display is the sentence the error says after the input's name.
+///
+/// ```
+/// use ddirac::{Error, Input, InitialMomentum, Method, OutputOptions, Problem, Reason, solve, systems::ChargedParticle};
+/// let problem = Problem::new(-0.1, 10, vec![0.0; 4], InitialMomentum::Momentum(vec![0.0; 4]));
+/// let error = solve(&ChargedParticle::default(), &problem, &Method::default(), &OutputOptions::default()).unwrap_err();
+/// assert!(matches!(error, Error::Invalid { what: Input::Step, why: Reason::NotPositiveFinite { value } } if value == -0.1));
+/// assert_eq!(error.to_string(), "invalid step: must be positive and finite, got -0.1");
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Reason {
+    /// A value that must be positive.
+    NotPositive {
+        /// The value given.
+        value: f64,
+    },
+    /// A value that must be positive and finite.
+    NotPositiveFinite {
+        /// The value given.
+        value: f64,
+    },
+    /// A count that must be at least 1 was 0.
+    Zero,
+    /// A parameter the system does not have.
+    UnknownParameter {
+        /// The parameters it has.
+        known: Vec<String>,
+    },
+    /// A number of links that is not a positive whole number.
+    NotANumberOfLinks {
+        /// The value given.
+        value: f64,
+    },
+    /// A chain of a fixed number of links given another.
+    OtherLinks {
+        /// The chain's links.
+        links: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// More links than a chain may have (its Newton Jacobian is dense).
+    TooManyLinks {
+        /// The links asked for.
+        links: f64,
+        /// The most there may be.
+        max: usize,
+    },
+    /// A step asked of a run that has taken all its steps.
+    Finished {
+        /// The run's number of steps.
+        steps: usize,
+    },
+    /// A state beyond the problem's last step.
+    BeyondLastStep {
+        /// The state's step.
+        step: usize,
+        /// The problem's last step.
+        last: usize,
+    },
+    /// A warm state from a stepper with another method or step.
+    AnotherMethod,
+    /// A state taken in a chart the system does not have.
+    NoSuchChart {
+        /// The state's chart.
+        chart: usize,
+    },
+    /// A state whose point is outside the chart it was taken in.
+    OutsideChart {
+        /// The state's chart.
+        chart: usize,
+    },
+    /// A composition of a basic rule that is not symmetric.
+    NotSymmetric {
+        /// The composition's order.
+        order: u8,
+        /// The rule's name.
+        rule: &'static str,
+    },
+    /// A connection with which the reduced step equations are singular in floating point.
+    SingularInFloatingPoint {
+        /// K's largest entry.
+        largest: f64,
+        /// The rank of the step equations' Jacobian at the first step.
+        rank: usize,
+        /// The number of coordinates.
+        coordinates: usize,
+    },
+    /// Rows of K of unequal lengths.
+    UnequalRows {
+        /// The row (from 1).
+        row: usize,
+        /// Its entries.
+        found: usize,
+        /// The entries of row 1.
+        first: usize,
+    },
+    /// A non-finite entry of K.
+    NonFiniteEntry {
+        /// The row (from 1).
+        row: usize,
+        /// The entry.
+        value: f64,
+    },
+    /// K with another number of rows than the group coordinates.
+    Rows {
+        /// The group coordinates.
+        expected: usize,
+        /// K's rows.
+        found: usize,
+    },
+    /// K's rows of another length than the shape coordinates.
+    Columns {
+        /// The shape coordinates.
+        expected: usize,
+        /// K's entries per row.
+        found: usize,
+    },
+    /// K of another shape than the system's group × shape coordinates.
+    Shape {
+        /// K's rows.
+        rows: usize,
+        /// K's columns.
+        columns: usize,
+        /// The group coordinates.
+        group: usize,
+        /// The shape coordinates.
+        shape: usize,
+    },
+    /// K fails an axiom of the paper's Definition 2.1 of a discrete connection.
+    Axiom {
+        /// The axiom.
+        axiom: &'static str,
+        /// By how much it fails.
+        deviation: f64,
+    },
+    /// A reason given by a front end (the command line's thread pool, say).
+    Other(String),
+}
+
+impl fmt::Display for Reason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Reason::NotPositive { value } => write!(f, "must be positive, got {value}"),
+            Reason::NotPositiveFinite { value } => write!(f, "must be positive and finite, got {value}"),
+            Reason::Zero => f.write_str("must be at least 1"),
+            Reason::UnknownParameter { known } => write!(f, "unknown; known parameters: {}", known.join(", ")),
+            Reason::NotANumberOfLinks { value } => {
+                write!(f, "{value} is not a number of links: a positive whole number")
+            }
+            Reason::OtherLinks { links, value } => write!(f, "this chain has {links} links, got {value}"),
+            Reason::TooManyLinks { links, max } => write!(
+                f,
+                "{links} links are more than {max}: a step's Newton Jacobian is dense, n² numbers ({} GB here)",
+                8.0 * links * links / 1e9
+            ),
+            Reason::Finished { steps } => write!(f, "the run has taken all its {steps} steps"),
+            Reason::BeyondLastStep { step, last } => write!(f, "step {step} is beyond the problem's last step {last}"),
+            Reason::AnotherMethod => f.write_str(
+                "it was taken from a stepper with another method or step; restart from its cold form (`State::cold`)",
+            ),
+            Reason::NoSuchChart { chart } => {
+                write!(f, "it was taken in chart {chart}, which this system does not have")
+            }
+            Reason::OutsideChart { chart } => write!(f, "its point is outside chart {chart}"),
+            Reason::NotSymmetric { order, rule } => write!(
+                f,
+                "a composition of order {order} needs a symmetric rule (`midpoint` or `trapezoid`); the `{rule}` rule \
+                 is not symmetric, and its compositions keep order 1"
+            ),
+            Reason::SingularInFloatingPoint { largest, rank, coordinates } => write!(
+                f,
+                "with this K (largest entry {largest:e}) the reduced step equations are singular in floating point: \
+                 their Jacobian has rank {rank} of {coordinates} at the first step, full rank with K = 0, and its \
+                 condition grows as |K|⁴; reduce with a K of smaller entries or run the unreduced equations \
+                 (`reduced = false`)"
+            ),
+            Reason::UnequalRows { row, found, first } => write!(
+                f,
+                "row {row} of K has {found} entries, but row 1 has {first}: K has one entry per shape coordinate in \
+                 every row"
+            ),
+            Reason::NonFiniteEntry { row, value } => write!(f, "row {row} of K contains the non-finite value {value}"),
+            Reason::Rows { expected, found } => {
+                write!(f, "K must have one row per group coordinate ({expected}), found {found} rows")
+            }
+            Reason::Columns { expected, found } => {
+                write!(f, "row 1 of K has {found} entries, expected one per shape coordinate ({expected})")
+            }
+            Reason::Shape { rows, columns, group, shape } => {
+                write!(f, "K is {rows}×{columns}, the system has {group} group and {shape} shape coordinates")
+            }
+            Reason::Axiom { axiom, deviation } => write!(f, "axiom {axiom} of Definition 2.1 fails by {deviation:.2e}"),
+            Reason::Other(why) => f.write_str(why),
+        }
+    }
 }
 
 /// The Legendre map ∂²L/∂v² near-singular where a step failed or the energy jumped: the coordinates

@@ -35,7 +35,7 @@ pub fn integrate<S: SystemIn<Dm>, Dm: Dim>(
     observer: &mut dyn FnMut(&Row<'_>) -> Result<(), OutputError>,
 ) -> Result<Summary, Error> {
     if output.every == 0 {
-        return Err(Error::Invalid { what: Input::Every, why: "must be at least 1".into() });
+        return Err(Error::Invalid { what: Input::Every, why: crate::Reason::Zero });
     }
     integrate_watched(system, problem, method, output, observer, &mut |_| Ok(()))
 }
@@ -67,7 +67,7 @@ pub fn integrate_watched<S: SystemIn<Dm>, Dm: Dim>(
     watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
 ) -> Result<Summary, Error> {
     if output.every == 0 {
-        return Err(Error::Invalid { what: Input::Every, why: "must be at least 1".into() });
+        return Err(Error::Invalid { what: Input::Every, why: crate::Reason::Zero });
     }
     let mut stepper = StepperIn::new(Borrowed(system), problem, method)?;
     stepper.set_wrap_angles(output.wrap_angles);

@@ -59,7 +59,7 @@ pub use composition::Composition;
 pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
 pub use energy_jump::{EnergyJump, JumpAction, ENERGY_DRIFT};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased, ErasedDynamic, Holds};
-pub use error::{ChartProblem, EnergyChange, Error, Hypothesis, Input, SingularLegendre, Time};
+pub use error::{ChartProblem, EnergyChange, Error, Hypothesis, Input, Reason, SingularLegendre, Time};
 pub use integrator::{integrate, integrate_watched, solve, OutputError, WATCH_STEPS};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;

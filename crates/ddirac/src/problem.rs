@@ -85,11 +85,11 @@ impl Problem {
         if !(self.step.is_finite() && self.step > 0.0) {
             return Err(Error::Invalid {
                 what: Input::Step,
-                why: format!("must be positive and finite, got {}", self.step),
+                why: crate::Reason::NotPositiveFinite { value: self.step },
             });
         }
         if self.steps == 0 {
-            return Err(Error::Invalid { what: Input::Steps, why: "must be at least 1".into() });
+            return Err(Error::Invalid { what: Input::Steps, why: crate::Reason::Zero });
         }
         let (what, v) = match &self.initial {
             InitialMomentum::Momentum(p) => (Input::InitialMomentum, p),

@@ -285,7 +285,10 @@ impl Ensemble {
             Ok(())
         };
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| {
-            CliError::Integration(Error::Invalid { what: Input::Argument("threads".into()), why: e.to_string() })
+            CliError::Integration(Error::Invalid {
+                what: Input::Argument("threads".into()),
+                why: ddirac::Reason::Other(e.to_string()),
+            })
         })?;
         let ran = pool
             .install(|| ddirac::ensemble::run(range, &member, &plan.method, &plan.output, self.trajectories, &sink));

@@ -14,7 +14,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::{Error, Input};
+use crate::{Error, Input, Reason};
 
 /// A linear discrete principal connection, given by K = h_{d,Σ}.
 ///
@@ -41,18 +41,14 @@ impl Connection {
     /// have equal lengths and finite entries. Whether the sizes fit a system is checked when a run is
     /// set up ([`Connection::fitted`]).
     pub fn new(rows: &[Vec<f64>]) -> Result<Self, Error> {
-        let invalid = |why: String| Error::Invalid { what: Input::Connection, why };
+        let invalid = |why: Reason| Error::Invalid { what: Input::Connection, why };
         let n_x = rows.first().map_or(0, Vec::len);
         for (j, row) in rows.iter().enumerate() {
             if row.len() != n_x {
-                return Err(invalid(format!(
-                    "row {} of K has {} entries, but row 1 has {n_x}: K has one entry per shape coordinate in every row",
-                    j + 1,
-                    row.len()
-                )));
+                return Err(invalid(Reason::UnequalRows { row: j + 1, found: row.len(), first: n_x }));
             }
-            if let Some(v) = row.iter().find(|v| !v.is_finite()) {
-                return Err(invalid(format!("row {} of K contains the non-finite value {v}", j + 1)));
+            if let Some(&value) = row.iter().find(|v| !v.is_finite()) {
+                return Err(invalid(Reason::NonFiniteEntry { row: j + 1, value }));
             }
         }
         Ok(Self { k: DMatrix::from_fn(rows.len(), n_x, |j, i| rows[j][i]) })
@@ -72,21 +68,15 @@ impl Connection {
     /// assert_eq!(Connection::new(&[]).unwrap().fitted(3, 0).unwrap(), Connection::zero(3, 0));
     /// ```
     pub fn fitted(&self, n_x: usize, n_g: usize) -> Result<Self, Error> {
-        let invalid = |why: String| Error::Invalid { what: Input::Connection, why };
+        let invalid = |why: Reason| Error::Invalid { what: Input::Connection, why };
         if self.n_g() != n_g {
-            return Err(invalid(format!(
-                "K must have one row per group coordinate ({n_g}), found {} rows",
-                self.n_g()
-            )));
+            return Err(invalid(Reason::Rows { expected: n_g, found: self.n_g() }));
         }
         if n_g == 0 {
             return Ok(Self::zero(n_x, 0));
         }
         if self.n_x() != n_x {
-            return Err(invalid(format!(
-                "row 1 of K has {} entries, expected one per shape coordinate ({n_x})",
-                self.n_x()
-            )));
+            return Err(invalid(Reason::Columns { expected: n_x, found: self.n_x() }));
         }
         Ok(self.clone())
     }
@@ -211,9 +201,9 @@ impl Connection {
         for s in 0..8 {
             let (x0, g0, x1, g1) = (sample(s, n_x), sample(s + 1, n_g), sample(s + 2, n_x), sample(s + 3, n_g));
             let (a, b) = (sample(s + 4, n_g), sample(s + 5, n_g));
-            let fail = |axiom: &str, dev: f64| Error::Invalid {
+            let fail = |axiom: &'static str, deviation: f64| Error::Invalid {
                 what: Input::Connection,
-                why: format!("axiom {axiom} of Definition 2.1 fails by {dev:.2e}"),
+                why: Reason::Axiom { axiom, deviation },
             };
             let dev0 = self.omega_d((&x0, &g0), (&x0, &g0)).iter().fold(0.0f64, |m, v| m.max(v.abs()));
             if dev0 > 1e-12 * scale {

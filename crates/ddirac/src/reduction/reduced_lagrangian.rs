@@ -51,13 +51,12 @@ impl<S> ReducedLagrangian<S> {
         if (connection.n_x(), connection.n_g()) != (split.n_x(), split.n_g()) {
             return Err(Error::Invalid {
                 what: Input::Connection,
-                why: format!(
-                    "K is {}×{}, the system has {} group and {} shape coordinates",
-                    connection.n_g(),
-                    connection.n_x(),
-                    split.n_g(),
-                    split.n_x()
-                ),
+                why: crate::Reason::Shape {
+                    rows: connection.n_g(),
+                    columns: connection.n_x(),
+                    group: split.n_g(),
+                    shape: split.n_x(),
+                },
             });
         }
         Ok(Self { ld: DiscreteLagrangian::new(system, rule, step), split, connection })

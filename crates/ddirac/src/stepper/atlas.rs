@@ -487,12 +487,11 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         };
         let chart = memory.chart;
         if chart >= self.charts.len() {
-            let why = format!("it was taken in chart {chart}, which this system does not have");
-            return Err(Error::Invalid { what: crate::Input::State, why });
+            return Err(Error::Invalid { what: crate::Input::State, why: crate::Reason::NoSuchChart { chart } });
         }
         if self.charts[chart].is_none() {
             let Some((q, p)) = atlas::transition(&self.system, 0, chart, &state.q, &state.p) else {
-                let why = format!("its point is outside chart {chart}");
+                let why = crate::Reason::OutsideChart { chart };
                 return Err(Error::Invalid { what: crate::Input::State, why });
             };
             self.charts[chart] = Some(self.prepare(chart, &q, &p)?);

@@ -201,13 +201,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
                     let largest = k.matrix().amax();
                     return Err(Error::Invalid {
                         what: Input::Connection,
-                        why: format!(
-                            "with this K (largest entry {largest:e}) the reduced step equations are singular in \
-                             floating point: their Jacobian has rank {rank} of {} at the first step, full rank with \
-                             K = 0, and its condition grows as |K|⁴; reduce with a K of smaller entries or run the \
-                             unreduced equations (`reduced = false`)",
-                            dim.n()
-                        ),
+                        why: crate::Reason::SingularInFloatingPoint { largest, rank, coordinates: dim.n() },
                     });
                 }
             }
@@ -297,7 +291,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         if self.is_finished() {
             return Err(Error::Invalid {
                 what: Input::Steps,
-                why: format!("the run has taken all its {} steps", self.context.steps),
+                why: crate::Reason::Finished { steps: self.context.steps },
             });
         }
         if crate::interrupt::requested() {
@@ -376,14 +370,12 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
     /// are not tested again for a cold state.
     pub fn restart(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
         if state.k > self.context.steps {
-            let why = format!("step {} is beyond the problem's last step {}", state.k, self.context.steps);
+            let why = crate::Reason::BeyondLastStep { step: state.k, last: self.context.steps };
             return Err(Error::Invalid { what: Input::State, why });
         }
         if let Some(memory) = &state.memory {
             if memory.method != self.context.method || memory.h.to_bits() != self.context.h.to_bits() {
-                let why = "it was taken from a stepper with another method or step; restart from its cold form \
-                           (`State::cold`)";
-                return Err(Error::Invalid { what: Input::State, why: why.into() });
+                return Err(Error::Invalid { what: Input::State, why: crate::Reason::AnotherMethod });
             }
             self.progress = memory.progress.clone();
             equipped!(&mut self.schemes, e => e.set_closed_form(&self.progress.momenta));

@@ -150,11 +150,6 @@ pub(crate) fn check_symmetric(method: &Method) -> Result<(), Error> {
     if method.composition.is_basic() || matches!(method.rule, Rule::Midpoint | Rule::Trapezoid) {
         return Ok(());
     }
-    let why = format!(
-        "a composition of order {} needs a symmetric rule (`midpoint` or `trapezoid`); the `{}` rule is not \
-         symmetric, and its compositions keep order 1",
-        method.composition.order(),
-        method.rule.name()
-    );
+    let why = crate::Reason::NotSymmetric { order: method.composition.order(), rule: method.rule.name() };
     Err(Error::Invalid { what: Input::Composition, why })
 }

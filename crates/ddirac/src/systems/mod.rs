@@ -41,16 +41,13 @@ fn positive(name: &str, value: f64) -> Result<f64, Error> {
     if finite(name, value)? > 0.0 {
         Ok(value)
     } else {
-        Err(Error::Invalid { what: Input::Parameter(name.into()), why: format!("must be positive, got {value}") })
+        Err(Error::Invalid { what: Input::Parameter(name.into()), why: crate::Reason::NotPositive { value } })
     }
 }
 
 fn unknown_parameter(name: &str, system: &impl Parameters) -> Error {
-    let known: Vec<&str> = system.parameters().into_iter().map(|(n, _)| n).collect();
-    Error::Invalid {
-        what: Input::Parameter(name.into()),
-        why: format!("unknown; known parameters: {}", known.join(", ")),
-    }
+    let known = system.parameters().into_iter().map(|(n, _)| n.to_string()).collect();
+    Error::Invalid { what: Input::Parameter(name.into()), why: crate::Reason::UnknownParameter { known } }
 }
 
 /// Builds a built-in system from parameter overrides `(name, value)`.

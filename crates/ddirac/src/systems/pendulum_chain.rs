@@ -99,7 +99,7 @@ impl<const N: usize> super::Parameters for PendulumChain<N> {
             "links" => {
                 return Err(Error::Invalid {
                     what: Input::Parameter(name.into()),
-                    why: format!("PendulumChain<{N}> has {N} links, got {value}"),
+                    why: crate::Reason::OtherLinks { links: N, value },
                 })
             }
             "m" => self.m = super::positive(name, value)?,
@@ -191,7 +191,7 @@ impl super::Parameters for DynamicPendulumChain {
             "links" => {
                 return Err(Error::Invalid {
                     what: Input::Parameter(name.into()),
-                    why: format!("this chain has {} links, got {value}", self.links),
+                    why: crate::Reason::OtherLinks { links: self.links, value },
                 })
             }
             "m" => self.m = super::positive(name, value)?,
@@ -263,10 +263,7 @@ macro_rules! fixed_links {
 crate::sizes::with_sizes!(fixed_links);
 
 fn unsupported_links(value: f64) -> Error {
-    Error::Invalid {
-        what: Input::Parameter("links".into()),
-        why: format!("{value} is not a number of links: a positive whole number"),
-    }
+    Error::Invalid { what: Input::Parameter("links".into()), why: crate::Reason::NotANumberOfLinks { value } }
 }
 
 /// The default parameters of the built-in `pendulum_chain`, `links` first.
@@ -286,10 +283,7 @@ pub(super) fn build(overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, E
     if links > MAX_LINKS as f64 {
         return Err(Error::Invalid {
             what: Input::Parameter("links".into()),
-            why: format!(
-                "{links} links are more than {MAX_LINKS}: a step's Newton Jacobian is dense, n² numbers ({} GB here)",
-                8.0 * links * links / 1e9
-            ),
+            why: crate::Reason::TooManyLinks { links, max: MAX_LINKS },
         });
     }
     build_links(links as usize, overrides)

@@ -243,7 +243,10 @@ fn a_composition_of_a_rule_that_is_not_symmetric_is_refused() {
         let problem = ChargedParticle::paper_problem(100);
         let error = Stepper::new(&ChargedParticle::default(), &problem, &method).err().expect("refused");
         match &error {
-            Error::Invalid { what: Input::Composition, why } => assert!(why.contains("symmetric"), "{why}"),
+            Error::Invalid { what: Input::Composition, why } => {
+                assert_eq!(why, &ddirac::Reason::NotSymmetric { order: 4, rule: rule.name() });
+                assert!(why.to_string().contains("symmetric"), "{why}");
+            }
             other => panic!("expected a refused composition, got {other}"),
         }
         assert!(ddirac::check(&ChargedParticle::default(), &problem, &method).is_err());

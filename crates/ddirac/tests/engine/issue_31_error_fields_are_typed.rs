@@ -69,3 +69,35 @@ fn a_newton_failure_after_subdivision_carries_the_sub_steps_tried() {
         other => panic!("not a Newton failure: {:?}", other.map(|s| s.summary.steps)),
     }
 }
+
+/// An invalid input says why as a `Reason` with its numbers, and prints the sentence it printed.
+#[test]
+fn an_invalid_input_carries_its_reason_with_the_numbers() {
+    use ddirac::{Connection, Input, Reason};
+    let error = Connection::new(&[vec![0.0, 1.0], vec![0.5]]).unwrap_err();
+    assert!(matches!(
+        &error,
+        Error::Invalid { what: Input::Connection, why: Reason::UnequalRows { row: 2, found: 1, first: 2 } }
+    ));
+    assert_eq!(
+        error.to_string(),
+        "invalid connection: row 2 of K has 1 entries, but row 1 has 2: K has one entry per shape coordinate in every row"
+    );
+    let error = Connection::new(&[vec![f64::NAN]]).unwrap_err();
+    assert!(matches!(error, Error::Invalid { why: Reason::NonFiniteEntry { row: 1, value }, .. } if value.is_nan()));
+
+    let built_in = ddirac::systems::find("charged_particle").expect("a built-in");
+    let error = (built_in.build)(&[("mass".into(), 1.0)]).err().expect("refused");
+    let Error::Invalid { what: Input::Parameter(name), why: Reason::UnknownParameter { known } } = error else {
+        panic!("{error:?}")
+    };
+    assert_eq!(name, "mass");
+    // The known parameters are the built-in's own, as its defaults list them.
+    let defaults: Vec<String> = (built_in.defaults)().into_iter().map(|(n, _)| n.to_string()).collect();
+    assert_eq!(known, defaults);
+    assert!(known.iter().any(|k| k == "m"), "{known:?}");
+
+    let problem = Problem::new(0.1, 0, vec![0.0; 2], InitialMomentum::Momentum(vec![0.0; 2]));
+    let error = solve(&SphericalPendulum::default(), &problem, &Method::default(), &OutputOptions::default());
+    assert!(matches!(error, Err(Error::Invalid { what: Input::Steps, why: Reason::Zero })), "{error:?}");
+}
