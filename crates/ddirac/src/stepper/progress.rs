@@ -338,7 +338,7 @@ impl<Dm: Dim> Progress<Dm> {
         &mut self,
         stages: &Stages<Sc, Dm>,
         context: &Context<S, Dm>,
-        failure: Error,
+        mut failure: Error,
         solved: Option<Taken<Dm>>,
     ) -> Result<Taken<Dm>, Error> {
         let dim = context.dim;
@@ -396,12 +396,10 @@ impl<Dm: Dim> Progress<Dm> {
         if let Some(solved) = solved {
             return Ok(solved);
         }
-        Err(match failure {
-            Error::Newton { step, t, h, iterations, residual, reason, singular, .. } => {
-                Error::Newton { step, t, h, iterations, residual, reason, singular, sub_steps: Some(MAX_SUBDIVISION) }
-            }
-            other => other,
-        })
+        if let Error::Newton { sub_steps, .. } = &mut failure {
+            *sub_steps = Some(MAX_SUBDIVISION);
+        }
+        Err(failure)
     }
 
     /// Solves step k as one step of the basic method.
