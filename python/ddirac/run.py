@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -19,26 +18,6 @@ if TYPE_CHECKING:  # optional: imported by the methods that need them
 #: Initial data: a sequence in the order of ``system.coordinates``, or a mapping by coordinate (a name,
 #: a SymPy symbol or dynamicsymbol; for velocities also the derivative ``q(t).diff(t)``).
 Vector = Union[Sequence[float], "np.ndarray", Mapping[Any, float]]
-
-#: Method keys :func:`simulate` takes besides ``rule``, ``variant`` and ``reduced``, with their
-#: defaults (as the ``[method]`` table of a spec).
-METHOD_KEYS = {
-    "connection": None,
-    "tolerance": None,
-    "max_iterations": None,
-    "reuse_jacobian": None,
-    "derivatives": "auto",
-    "check_invariance": True,
-    "on_energy_jump": "warn",
-    "energy_jump_threshold": None,
-    "order": 2,
-    "composition": None,
-    "atlas": True,
-}
-
-# Largest relative deviation of duration / step from a whole number of steps.
-_WHOLE = 1e-9
-
 
 class Run:
     """The rows of a run as NumPy arrays, and its summary.
@@ -135,9 +114,12 @@ def simulate(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Option
     ``v0`` are sequences in the order of ``system.coordinates``, or dicts by coordinate (its name, or a
     SymPy symbol or dynamicsymbol ``q(t)`` of that name; the keys of ``v0`` may be ``q(t).diff(t)``).
     ``rule`` is ``left``, ``right``, ``midpoint`` or ``trapezoid``; ``variant`` ``plus`` or ``minus``;
-    ``reduced=True`` integrates the reduced equations and reconstructs the group motion. Other method
-    keys: ``connection`` (rows of K, one per group coordinate), ``tolerance``, ``max_iterations``,
-    ``reuse_jacobian``, ``derivatives`` (``auto``, ``compiled``, ``dual``), ``check_invariance``,
+    ``reduced=True`` integrates the reduced equations and reconstructs the group motion. The other
+    method keys are those of a spec's ``[method]`` table, with the same defaults and checked by the same
+    rules (a refusal says the same as ``ddirac run`` does): ``connection`` (rows of K, one per group
+    coordinate), ``tolerance``, ``max_iterations``, ``jacobian`` (``reuse``: chord Newton, or ``fresh``;
+    ``reuse_jacobian=True``/``False`` says the same), ``derivatives`` (``auto``, ``compiled``, ``dual``),
+    ``check_invariance``,
     ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``, ``order`` (2, 4,
     6 or 8: orders above 2 compose the basic step of a symmetric rule, midpoint or trapezoid) and
     ``composition`` (its coefficient set: ``suzuki``, ``kahan-li`` or ``triple-jump``) and ``atlas``
@@ -198,105 +180,61 @@ def check(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[
 def _prepare(system: System, q0: Vector, p0: Optional[Vector], v0: Optional[Vector], step: Optional[float],
              steps: Optional[int], duration: Optional[float], rule: str, variant: str, reduced: bool,
              method: Mapping[str, Any]) -> dict[str, Any]:
-    """The arguments of a run, checked, as the dict the module takes: ``q0``, ``p0``, ``v0``, ``step``,
-    ``steps`` and the ``method`` keys."""
+    """The arguments of a run as the dict the module takes: ``q0``, ``p0``, ``v0``, ``step``, ``steps``
+    and the ``method`` keys. The module checks them by the rules a spec file's keys follow; here they
+    only become plain numbers, strings and lists."""
     from .system import System
 
     if not isinstance(system, System):
         raise _ddirac.Error(f"`system` must be a ddirac.System, not {type(system).__name__}")
-    unknown = sorted(set(method) - set(METHOD_KEYS))
+    keys = dict(method)
+    if "reuse_jacobian" in keys:  # `jacobian = "reuse"` or `"fresh"` as a boolean
+        if "jacobian" in keys:
+            raise _ddirac.Error("give `jacobian` or `reuse_jacobian`, not both")
+        reuse = keys.pop("reuse_jacobian")
+        keys["jacobian"] = None if reuse is None else ("reuse" if bool(reuse) else "fresh")
+    known = _ddirac.method_keys()
+    unknown = sorted(set(keys) - set(known))
     if unknown:
-        raise _ddirac.Error(f"unknown method key {unknown[0]!r}; the method keys are: rule, variant, reduced, "
-                            + ", ".join(METHOD_KEYS))
-    keys = {**METHOD_KEYS, **method}
+        raise _ddirac.Error(f"unknown method key {unknown[0]!r}; the method keys are: {', '.join(known)}")
+    keys.update(rule=str(rule), variant=str(variant), reduced=bool(reduced))
+    for key in ("max_iterations", "order"):
+        if keys.get(key) is not None:
+            keys[key] = _whole(keys[key], key)
+    if keys.get("connection") is not None:
+        keys["connection"] = np.atleast_2d(np.asarray(keys["connection"], dtype=float)).tolist()
     names = system.coordinates
-    q0 = _vector(q0, names, "q0")
-    if (p0 is None) == (v0 is None):
-        raise _ddirac.Error("give exactly one of `p0` (momenta) and `v0` (velocities)")
-    p = None if p0 is None else _vector(p0, names, "p0")
-    v = None if v0 is None else _vector(v0, names, "v0", velocities=True)
-    h, n = _grid(step, steps, duration)
-    connection = keys["connection"]
-    if connection is not None:
-        connection = [[float(x) for x in row] for row in np.atleast_2d(np.asarray(connection, dtype=float))]
-    keys = {
-        "rule": str(rule),
-        "variant": str(variant),
-        "reduced": bool(reduced),
-        "connection": connection,
-        "tolerance": None if keys["tolerance"] is None else float(keys["tolerance"]),
-        "max_iterations": None if keys["max_iterations"] is None else _count(keys["max_iterations"], "max_iterations"),
-        "reuse_jacobian": None if keys["reuse_jacobian"] is None else bool(keys["reuse_jacobian"]),
-        "derivatives": str(keys["derivatives"]),
-        "check_invariance": bool(keys["check_invariance"]),
-        "on_energy_jump": str(keys["on_energy_jump"]),
-        "energy_jump_threshold": None if keys["energy_jump_threshold"] is None else float(keys["energy_jump_threshold"]),
-        "order": _count(keys["order"], "order"),
-        "composition": None if keys["composition"] is None else str(keys["composition"]),
-        "atlas": bool(keys["atlas"]),
-    }
-    return {"q0": q0, "p0": p, "v0": v, "step": h, "steps": n, "method": keys}
+    h, n = _ddirac.time_grid(None if step is None else float(step), None if steps is None else _whole(steps, "steps"),
+                             None if duration is None else float(duration))
+    return {"q0": _vector(q0, names, "q0"), "p0": None if p0 is None else _vector(p0, names, "p0"),
+            "v0": None if v0 is None else _vector(v0, names, "v0", velocities=True), "step": h, "steps": n, "duration": None,
+            "method": keys}
 
 
-def _vector(values: Vector, names: list[str], what: str, velocities: bool = False) -> list[float]:
-    """The entries of ``values`` in the order of ``names``: a sequence, or a mapping by coordinate (a
-    name, a SymPy symbol or dynamicsymbol; with ``velocities`` also its time derivative)."""
+def _vector(values: Vector, names: list[str], what: str, velocities: bool = False) -> Any:
+    """``values`` as the module takes them: a list in the order of ``names``, or a list of (name, value)
+    pairs for a mapping by coordinate (a name, a SymPy symbol or dynamicsymbol; with ``velocities``
+    also its time derivative). The module checks the entries against the coordinates."""
     if isinstance(values, Mapping):
         from .system import _coordinate_key
 
-        by_name: dict[str, Any] = {}
-        for key, value in values.items():
-            name, _ = _coordinate_key(key, f"a key of `{what}`", velocity=velocities)
-            if name in by_name:
-                raise _ddirac.Error(f"`{what}` gives coordinate `{name}` twice")
-            by_name[name] = value
-        missing = [n for n in names if n not in by_name]
-        extra = [k for k in by_name if k not in names]
-        if missing or extra:
-            raise _ddirac.Error(f"`{what}` must give each coordinate once ({', '.join(names)}): "
-                                + (f"missing {', '.join(missing)}" if missing else f"unknown {', '.join(extra)}"))
-        values = [by_name[n] for n in names]
+        return [(_coordinate_key(key, f"a key of `{what}`", velocity=velocities)[0], float(value))
+                for key, value in values.items()]
     array = np.asarray(values, dtype=float)
-    if array.ndim != 1 or len(array) != len(names):
-        raise _ddirac.Error(f"`{what}` has {array.size} entries; the system has {len(names)} coordinates "
-                            f"({', '.join(names)})")
-    bad = np.flatnonzero(~np.isfinite(array))
-    if bad.size:
-        raise _ddirac.Error(f"`{what}` entry {bad[0]} (`{names[bad[0]]}`) is {array[bad[0]]}, not a finite number")
-    return [float(x) for x in array]
+    if array.ndim != 1:
+        raise _ddirac.Error(f"`{what}` must be a sequence of numbers, one per coordinate ({', '.join(names)}), "
+                            f"or a dict by coordinate; it has the shape {array.shape}")
+    return array.tolist()
+
+
+def _whole(value: Any, what: str) -> int:
+    """``value`` as an integer, if it is a whole number (the module checks its range)."""
+    if isinstance(value, bool) or not float(value).is_integer():
+        raise _ddirac.Error(f"`{what}` must be a whole number, not {value!r}")
+    return int(value)
 
 
 def _count(value: Any, what: str) -> int:
     if isinstance(value, bool) or int(value) != value or int(value) < 1:
         raise _ddirac.Error(f"`{what}` must be a whole number of at least 1, not {value!r}")
     return int(value)
-
-
-def _positive(value: Any, what: str) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise _ddirac.Error(f"`{what}` must be a positive number, not {value!r}")
-    return value
-
-
-def _grid(step: Optional[float], steps: Optional[int], duration: Optional[float]) -> tuple[float, int]:
-    """(step, steps) from two or three of step, steps, duration, as a spec's ``[time]`` table."""
-    h = None if step is None else _positive(step, "step")
-    n = None if steps is None else _count(steps, "steps")
-    d = None if duration is None else _positive(duration, "duration")
-    given = sum(x is not None for x in (h, n, d))
-    if given < 2:
-        raise _ddirac.Error("give two of `step`, `steps` and `duration`")
-    if h is not None and n is not None:
-        if d is not None and abs(h * n - d) > _WHOLE * d:
-            raise _ddirac.Error(f"inconsistent time grid: step × steps = {h * n}, but duration = {d}")
-        return h, n
-    assert d is not None  # two of the three are given, and not both step and steps
-    if n is not None:
-        return d / n, n
-    assert h is not None
-    ratio = d / h
-    whole = round(ratio)
-    if whole < 1 or abs(ratio - whole) > _WHOLE * whole:
-        raise _ddirac.Error(f"duration / step = {ratio} is not a whole number of steps; give `steps` instead")
-    return h, int(whole)

@@ -41,6 +41,23 @@ impl SpecSource {
         self.error_with(message, labels)
     }
 
+    /// The diagnostic of a refused key: each key it concerns labelled at its span (`span_of`; a key
+    /// without a span in this spec goes unlabelled), with the refusal's help.
+    pub fn refusal<K: Copy>(
+        &self,
+        error: crate::keys::KeyError<K>,
+        span_of: impl Fn(K) -> Option<Range<usize>>,
+    ) -> Box<SpecError> {
+        let labels = error
+            .labels
+            .into_iter()
+            .filter_map(|(key, label)| span_of(key).map(|s| LabeledSpan::new_with_span(Some(label), s)))
+            .collect();
+        let mut diagnostic = self.error_with(error.message, labels);
+        diagnostic.help = error.help;
+        diagnostic
+    }
+
     /// An error with any number of labelled spans.
     pub fn error_with(&self, message: impl Into<String>, labels: Vec<LabeledSpan>) -> Box<SpecError> {
         Box::new(SpecError {

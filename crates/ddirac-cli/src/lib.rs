@@ -12,6 +12,7 @@ pub mod ensemble;
 pub mod estimate;
 pub mod exact;
 pub mod initial_entries;
+pub mod keys;
 pub mod lock;
 pub mod manifest;
 pub mod npy;

@@ -30,7 +30,7 @@ fn findings<'py>(py: Python<'py>, findings: &[Finding], tolerance: f64) -> PyRes
 /// or the `warnings` it would run with, as a run's summary lists them).
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, system: &SystemHandle, run_args: RunArgs) -> PyResult<Bound<'py, PyDict>> {
-    let (problem, method) = run_args.problem_and_method()?;
+    let (problem, method) = run_args.problem_and_method(&*system.inner)?;
     let inner = system.inner.clone();
     let checked = method.clone();
     let report: CheckReport = py.detach(move || inner.check(&problem, &checked)).map_err(engine)?;

@@ -29,6 +29,8 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::method_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(ensemble::ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(ensemble::ensemble_members, m)?)?;
     m.add_function(wrap_pyfunction!(overhead::rust_seconds, m)?)?;

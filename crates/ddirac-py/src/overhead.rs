@@ -14,7 +14,7 @@ use crate::system::SystemHandle;
 /// (`every` = 1): set-up, integration and the rows gathered into vectors, without Python objects.
 #[pyfunction]
 pub fn rust_seconds(py: Python<'_>, system: &SystemHandle, run_args: RunArgs) -> PyResult<f64> {
-    let (problem, method) = run_args.problem_and_method()?;
+    let (problem, method) = run_args.problem_and_method(&*system.inner)?;
     let inner = system.inner.clone();
     py.detach(move || {
         let start = Instant::now();

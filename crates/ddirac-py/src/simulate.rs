@@ -1,118 +1,133 @@
 //! One run: problem and method from plain arguments, the rows gathered into arrays while the GIL is
 //! released, and the summary as the dict `summary.json` holds.
 
-use ddirac::{
-    Connection, Differentiation, EnergyJump, InitialMomentum, JumpAction, Method, NewtonOptions, OutputOptions,
-    Problem, Rule, Summary, Variant,
-};
+use ddirac::{DynSystem, Method, OutputOptions, Problem, Summary};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use numpy::{PyArray1, PyArrayMethods};
+use pyo3::conversion::FromPyObjectOwned;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::error::{engine, raise};
 use crate::system::SystemHandle;
+use ddirac_cli::keys::{
+    self, initial::Values, method::MethodKey, method::MethodKeys, time::TimeKeys, KeyError, Spelling,
+};
 use ddirac_cli::report::{summary_json_of, RunRecord};
 
-/// The method keys of a run, as a spec's `[method]` table names them (a dict from Python).
-#[derive(FromPyObject)]
-#[pyo3(from_item_all)]
-pub(crate) struct MethodKeys {
-    rule: String,
-    variant: String,
-    reduced: bool,
-    connection: Option<Vec<Vec<f64>>>,
-    tolerance: Option<f64>,
-    max_iterations: Option<usize>,
-    reuse_jacobian: Option<bool>,
-    derivatives: String,
-    check_invariance: bool,
-    on_energy_jump: String,
-    energy_jump_threshold: Option<f64>,
-    order: Option<i64>,
-    composition: Option<String>,
-    atlas: bool,
+/// The method keys of a run as the Python package passes them: a dict with the keys of a spec's
+/// `[method]` table that were given ([`MethodKey::ALL`]), read into [`MethodKeys`].
+pub(crate) struct MethodArgs(MethodKeys);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for MethodArgs {
+    type Error = PyErr;
+
+    fn extract(ob: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let dict = ob.cast::<PyDict>()?;
+        if let Some(key) = dict.keys().iter().find_map(|k| {
+            let name = k.extract::<String>().unwrap_or_default();
+            (!MethodKey::ALL.iter().any(|m| m.name() == name)).then_some(name)
+        }) {
+            return Err(raise(format!("unknown method key {key:?}")));
+        }
+        fn get<'py, T: FromPyObjectOwned<'py>>(dict: &Bound<'py, PyDict>, key: MethodKey) -> PyResult<Option<T>> {
+            match dict.get_item(key.name())? {
+                Some(value) if !value.is_none() => value
+                    .extract::<T>()
+                    .map(Some)
+                    .map_err(|e| raise(format!("{}: {}", key.spelled(Spelling::Argument), e.into()))),
+                _ => Ok(None),
+            }
+        }
+        Ok(MethodArgs(MethodKeys {
+            rule: get(&dict, MethodKey::Rule)?,
+            variant: get(&dict, MethodKey::Variant)?,
+            reduced: get(&dict, MethodKey::Reduced)?,
+            connection: get(&dict, MethodKey::Connection)?,
+            tolerance: get(&dict, MethodKey::Tolerance)?,
+            max_iterations: get(&dict, MethodKey::MaxIterations)?,
+            jacobian: get(&dict, MethodKey::Jacobian)?,
+            derivatives: get(&dict, MethodKey::Derivatives)?,
+            check_invariance: get(&dict, MethodKey::CheckInvariance)?,
+            on_energy_jump: get(&dict, MethodKey::OnEnergyJump)?,
+            energy_jump_threshold: get(&dict, MethodKey::EnergyJumpThreshold)?,
+            order: get(&dict, MethodKey::Order)?,
+            composition: get(&dict, MethodKey::Composition)?,
+            atlas: get(&dict, MethodKey::Atlas)?,
+        }))
+    }
 }
 
-impl MethodKeys {
-    /// The method, or an error naming the key that is wrong.
-    pub(crate) fn method(self) -> PyResult<Method> {
-        let one_of = |key: &str, value: &str, names: &[&str]| {
-            raise(format!("`{key}` = {value:?} is not one of: {}", names.join(", ")))
-        };
-        let rule = Rule::from_name(&self.rule).ok_or_else(|| one_of("rule", &self.rule, &Rule::ALL.map(Rule::name)))?;
-        let variant = match self.variant.as_str() {
-            "plus" => Variant::Plus,
-            "minus" => Variant::Minus,
-            other => return Err(one_of("variant", other, &["plus", "minus"])),
-        };
-        let differentiation = Differentiation::from_name(&self.derivatives).ok_or_else(|| {
-            one_of("derivatives", &self.derivatives, &Differentiation::ALL.map(Differentiation::name))
-        })?;
-        let action = JumpAction::from_name(&self.on_energy_jump)
-            .ok_or_else(|| one_of("on_energy_jump", &self.on_energy_jump, &JumpAction::ALL.map(JumpAction::name)))?;
-        let defaults = NewtonOptions::default();
-        let newton = NewtonOptions {
-            tolerance: self.tolerance.unwrap_or(defaults.tolerance),
-            max_iterations: self.max_iterations.unwrap_or(defaults.max_iterations),
-            reuse_jacobian: self.reuse_jacobian.unwrap_or(defaults.reuse_jacobian),
-        };
-        if !(newton.tolerance.is_finite() && newton.tolerance > 0.0) {
-            return Err(raise(format!("`tolerance` = {} must be a positive number", newton.tolerance)));
+/// A vector of the initial data as Python passes it: a list in the coordinate order, or a list of
+/// (name, value) pairs.
+#[derive(FromPyObject)]
+pub(crate) enum VectorArg {
+    InOrder(Vec<f64>),
+    ByName(Vec<(String, f64)>),
+}
+
+impl VectorArg {
+    fn values(self) -> Values {
+        match self {
+            VectorArg::InOrder(list) => Values::InOrder(list),
+            VectorArg::ByName(entries) => Values::ByName(entries),
         }
-        let connection = self.connection.map(|rows| Connection::new(&rows)).transpose().map_err(raise)?;
-        let threshold = self.energy_jump_threshold.unwrap_or(EnergyJump::default().threshold);
-        let energy_jump = EnergyJump { threshold, action };
-        let (reduced, check_invariance) = (self.reduced, self.check_invariance);
-        let order = match self.order.map(u8::try_from) {
-            Some(Ok(order)) => Some(order),
-            Some(Err(_)) => {
-                return Err(raise(format!("`order` = {} is not one of: 2, 4, 6, 8", self.order.unwrap_or(0))))
-            }
-            None => None,
-        };
-        let composition = ddirac::Composition::select(order, self.composition.as_deref()).map_err(raise)?;
-        Ok(Method {
-            rule,
-            variant,
-            reduced,
-            connection,
-            newton,
-            check_invariance,
-            differentiation,
-            energy_jump,
-            composition,
-            atlas: self.atlas,
-        })
     }
 }
 
 /// What a run is made of, as the Python package passes it (a dict): initial data (`q0` with exactly one
-/// of `p0` and `v0`), time grid (`step`, `steps`) and the `method` keys.
+/// of `p0` and `v0`), time grid (two or three of `step`, `steps`, `duration`) and the `method` keys,
+/// checked by the rules of [`ddirac_cli::keys`] that a spec file's keys follow.
 #[derive(FromPyObject)]
 #[pyo3(from_item_all)]
 pub(crate) struct RunArgs {
-    q0: Vec<f64>,
-    p0: Option<Vec<f64>>,
-    v0: Option<Vec<f64>>,
-    step: f64,
-    steps: usize,
-    method: MethodKeys,
+    q0: VectorArg,
+    p0: Option<VectorArg>,
+    v0: Option<VectorArg>,
+    step: Option<f64>,
+    steps: Option<i64>,
+    duration: Option<f64>,
+    method: MethodArgs,
 }
 
 impl RunArgs {
-    /// The problem and the method, or an error naming what is wrong.
-    pub(crate) fn problem_and_method(self) -> PyResult<(Problem, Method)> {
-        let method = self.method.method()?;
-        let initial = match (self.p0, self.v0) {
-            (Some(p), None) => InitialMomentum::Momentum(p),
-            (None, Some(v)) => InitialMomentum::Velocity(v),
-            _ => return Err(raise("give exactly one of `p0` (momenta) and `v0` (velocities)")),
-        };
-        Ok((Problem::new(self.step, self.steps, self.q0, initial), method))
+    /// The problem and the method for `system`, or an error naming what is wrong.
+    pub(crate) fn problem_and_method(self, system: &dyn DynSystem) -> PyResult<(Problem, Method)> {
+        let coordinates = system.coordinates();
+        let names: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
+        let (q0, momentum) = keys::initial::initial(
+            &self.q0.values(),
+            self.p0.map(VectorArg::values).as_ref(),
+            self.v0.map(VectorArg::values).as_ref(),
+            &names,
+            Spelling::Argument,
+        )
+        .map_err(text)?;
+        let grid = TimeKeys { step: self.step, steps: self.steps, duration: self.duration };
+        let (step, steps) = keys::time::grid(&grid, Spelling::Argument).map_err(text)?;
+        let method = keys::method::method(&self.method.0, &coordinates, Spelling::Argument).map_err(text)?;
+        Ok((Problem::new(step, steps, q0, momentum), method))
     }
+}
+
+/// A refused key as the exception Python raises.
+fn text<K>(error: KeyError<K>) -> PyErr {
+    raise(error.text())
+}
+
+/// The step h and the number of steps N of a time grid given by two of `step`, `steps` and `duration`
+/// (all three when they agree), as a spec's `[time]` table gives it.
+#[pyfunction]
+pub fn time_grid(step: Option<f64>, steps: Option<i64>, duration: Option<f64>) -> PyResult<(f64, usize)> {
+    keys::time::grid(&TimeKeys { step, steps, duration }, Spelling::Argument).map_err(text)
+}
+
+/// The names of the method keys, in the order of a spec's `[method]` table.
+#[pyfunction]
+pub fn method_keys() -> Vec<&'static str> {
+    MethodKey::ALL.iter().map(|k| k.name()).collect()
 }
 
 /// Integrates and gathers the rows column by column: the whole work of a run from Python but the
@@ -232,7 +247,7 @@ pub fn simulate<'py>(
     wrap_angles: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (problem, method) = run_args.problem_and_method()?;
+    let (problem, method) = run_args.problem_and_method(&*system.inner)?;
     if every == 0 {
         return Err(raise("`every` must be at least 1"));
     }

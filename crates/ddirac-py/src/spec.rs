@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use ddirac::{InitialMomentum, Method, OutputOptions, Problem};
 use ddirac_cli::diagnostics::CliError;
+use ddirac_cli::keys::method::{MethodKey, MethodKeys};
 use ddirac_cli::run::{self, Loaded, RunOptions};
 use miette::{GraphicalReportHandler, GraphicalTheme};
 use pyo3::prelude::*;
@@ -96,25 +97,30 @@ impl LoadedSpec {
         (self.problem.step, self.problem.steps, self.problem.q0.clone(), p, v)
     }
 
-    /// The method's keys as the spec's `[method]` table names them.
+    /// The method's keys as the spec's `[method]` table names them ([`MethodKeys::of`]).
     #[getter]
     fn method<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let m = &self.method;
+        let k = MethodKeys::of(&self.method);
         let d = PyDict::new(py);
-        d.set_item("rule", m.rule.name())?;
-        d.set_item("variant", m.variant.name())?;
-        d.set_item("reduced", m.reduced)?;
-        d.set_item("connection", m.connection.as_ref().map(ddirac::Connection::rows))?;
-        d.set_item("tolerance", m.newton.tolerance)?;
-        d.set_item("max_iterations", m.newton.max_iterations)?;
-        d.set_item("reuse_jacobian", m.newton.reuse_jacobian)?;
-        d.set_item("derivatives", m.differentiation.name())?;
-        d.set_item("check_invariance", m.check_invariance)?;
-        d.set_item("on_energy_jump", m.energy_jump.action.name())?;
-        d.set_item("energy_jump_threshold", m.energy_jump.threshold)?;
-        d.set_item("order", m.composition.order())?;
-        d.set_item("composition", m.composition.name())?;
-        d.set_item("atlas", m.atlas)?;
+        for key in MethodKey::ALL {
+            match key {
+                MethodKey::Rule => d.set_item(key.name(), &k.rule)?,
+                MethodKey::Variant => d.set_item(key.name(), &k.variant)?,
+                MethodKey::Reduced => d.set_item(key.name(), k.reduced)?,
+                MethodKey::Connection => d.set_item(key.name(), &k.connection)?,
+                MethodKey::Tolerance => d.set_item(key.name(), k.tolerance)?,
+                MethodKey::MaxIterations => d.set_item(key.name(), k.max_iterations)?,
+                MethodKey::Jacobian => d.set_item(key.name(), &k.jacobian)?,
+                MethodKey::Derivatives => d.set_item(key.name(), &k.derivatives)?,
+                MethodKey::CheckInvariance => d.set_item(key.name(), k.check_invariance)?,
+                MethodKey::OnEnergyJump => d.set_item(key.name(), &k.on_energy_jump)?,
+                MethodKey::EnergyJumpThreshold => d.set_item(key.name(), k.energy_jump_threshold)?,
+                MethodKey::Order => d.set_item(key.name(), k.order)?,
+                MethodKey::Composition => d.set_item(key.name(), &k.composition)?,
+                MethodKey::Atlas => d.set_item(key.name(), k.atlas)?,
+                MethodKey::ConnectionRow(_) | MethodKey::ConnectionEntry(..) => {}
+            }
+        }
         Ok(d)
     }
 

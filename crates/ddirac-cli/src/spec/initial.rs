@@ -1,68 +1,26 @@
-//! `[initial]`: q0 and exactly one of p0, v0, each as an array in the coordinate order or as a table
-//! by coordinate name (`q = { x = 0.0, theta = 0.0 }`).
+//! `[initial]`: q0 and exactly one of p0, v0 ([`crate::keys::initial`]), each as an array in the
+//! coordinate order or as a table by coordinate name (`q = { x = 0.0, theta = 0.0 }`), refusals
+//! pointing at the values.
+
+use std::ops::Range;
 
 use ddirac::InitialMomentum;
-use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::validate::{finite, Spans};
+use super::validate::Spans;
 use super::{Spec, Vector};
 use crate::diagnostics::{SpecError, SpecSource};
+use crate::keys::initial::{InitialKey, Values, Which};
+use crate::keys::Spelling;
 
-/// A vector with one finite entry per coordinate, in the coordinate order.
-pub fn vector(
-    source: &SpecSource,
-    values: &Spanned<Vector>,
-    key: &str,
-    names: &[&str],
-) -> Result<Vec<f64>, Box<SpecError>> {
-    match values.get_ref() {
-        Vector::InOrder(list) => {
-            if list.len() != names.len() {
-                return Err(source
-                    .error(
-                        Some(values.span()),
-                        format!("`{key}` has {} entries, but the system has {} coordinates", list.len(), names.len()),
-                        format!("expected {} entries", names.len()),
-                    )
-                    .with_help(format!("give one entry per coordinate, in order: {}", names.join(", "))));
-            }
-            list.iter().zip(names).map(|(v, name)| finite(source, v, &format!("`{key}` entry for `{name}`"))).collect()
-        }
+/// The values of a vector as written.
+fn values(vector: &Vector) -> Values {
+    match vector {
+        Vector::InOrder(list) => Values::InOrder(list.iter().map(|v| *v.get_ref()).collect()),
         Vector::ByName(entries) => {
-            if let Some((name, _)) = entries.iter().find(|(n, _)| !names.contains(&n.get_ref().as_str())) {
-                return Err(source
-                    .error(
-                        Some(name.span()),
-                        format!("`{key}` gives a value for `{}`, which is not a coordinate", name.get_ref()),
-                        "not a coordinate",
-                    )
-                    .with_help(format!("the coordinates are: {}", names.join(", "))));
-            }
-            let missing: Vec<&str> =
-                names.iter().copied().filter(|n| !entries.iter().any(|(e, _)| e.get_ref() == n)).collect();
-            if !missing.is_empty() {
-                return Err(source
-                    .error(
-                        Some(values.span()),
-                        format!("`{key}` has no value for {}", quoted(&missing)),
-                        format!("missing {}", quoted(&missing)),
-                    )
-                    .with_help(format!("give one value per coordinate: {}", names.join(", "))));
-            }
-            names
-                .iter()
-                .map(|name| {
-                    let (_, value) = entries.iter().find(|(n, _)| n.get_ref() == name).expect("checked above");
-                    finite(source, value, &format!("`{key}` entry for `{name}`"))
-                })
-                .collect()
+            Values::ByName(entries.iter().map(|(n, v)| (n.get_ref().clone(), *v.get_ref())).collect())
         }
     }
-}
-
-fn quoted(names: &[&str]) -> String {
-    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
 }
 
 /// q0 and exactly one of p0, v0.
@@ -73,24 +31,31 @@ pub fn initial(
     spans: &mut Spans,
 ) -> Result<(Vec<f64>, InitialMomentum), Box<SpecError>> {
     let initial = spec.initial.get_ref();
-    let q0 = vector(source, &initial.q, "initial.q", names)?;
-    spans.q = Some(initial.q.span());
-    let momentum = match (&initial.p, &initial.v) {
-        (Some(p), None) => InitialMomentum::Momentum(vector(source, p, "initial.p", names)?),
-        (None, Some(v)) => InitialMomentum::Velocity(vector(source, v, "initial.v", names)?),
-        (None, None) => {
-            return Err(source
-                .error(Some(spec.initial.span()), "`[initial]` needs `p` or `v`", "this table")
-                .with_help("give the initial momenta as `p = [...]` or the initial velocities as `v = [...]`"))
-        }
-        (Some(p), Some(v)) => {
-            let labels =
-                [p, v].iter().map(|x| LabeledSpan::new_with_span(Some("given here".into()), x.span())).collect();
-            return Err(source
-                .error_with("`[initial]` takes `p` or `v`, not both", labels)
-                .with_help("remove one of them: `p` are momenta, `v` velocities mapped to momenta by ∂L/∂v"));
+    let of = |which| match which {
+        Which::Q => Some(&initial.q),
+        Which::P => initial.p.as_ref(),
+        Which::V => initial.v.as_ref(),
+    };
+    let span_of = |key| -> Option<Range<usize>> {
+        match key {
+            InitialKey::Table => Some(spec.initial.span()),
+            InitialKey::Vector(which) => of(which).map(|v| v.span()),
+            InitialKey::Entry(which, i) => match of(which)?.get_ref() {
+                Vector::InOrder(list) => list.get(i).map(|v| v.span()),
+                Vector::ByName(entries) => entries.get(i).map(|(_, v)| v.span()),
+            },
+            InitialKey::Name(which, i) => match of(which)?.get_ref() {
+                Vector::ByName(entries) => entries.get(i).map(|(n, _)| n.span()),
+                Vector::InOrder(_) => None,
+            },
         }
     };
+    let given = |v: Option<&Spanned<Vector>>| v.map(|v| values(v.get_ref()));
+    let (p, v) = (given(initial.p.as_ref()), given(initial.v.as_ref()));
+    let result =
+        crate::keys::initial::initial(&values(initial.q.get_ref()), p.as_ref(), v.as_ref(), names, Spelling::Spec)
+            .map_err(|error| source.refusal(error, span_of))?;
+    spans.q = Some(initial.q.span());
     spans.momentum = initial.p.as_ref().or(initial.v.as_ref()).map(|x| x.span());
-    Ok((q0, momentum))
+    Ok(result)
 }

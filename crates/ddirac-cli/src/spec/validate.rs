@@ -3,17 +3,14 @@
 
 use std::ops::Range;
 
-use ddirac::composition::{self, Composition};
 use ddirac::systems::BuiltIn;
-use ddirac::{
-    Coordinate, Differentiation, DynSystem, EnergyJump, JumpAction, Method, NewtonOptions, OutputOptions, Problem,
-    Role, Rule, Variant,
-};
+use ddirac::{Coordinate, DynSystem, Method, OutputOptions, Problem, Role};
 use miette::LabeledSpan;
 use toml::Spanned;
 
-use super::{expression, initial, time, MethodSpec, Number, Numbers, Spec, SystemRef};
+use super::{expression, initial, time, MethodSpec, Number, Spec, SystemRef};
 use crate::diagnostics::{SpecError, SpecSource};
+use crate::keys::{self, method::MethodKey, method::MethodKeys, Spelling};
 
 /// A validated spec, ready to run.
 pub struct Plan {
@@ -372,194 +369,61 @@ fn method(
     spans: &mut Spans,
 ) -> Result<Method, Box<SpecError>> {
     let m = &spec.method;
-    let defaults = Method::default();
-    let rule = match &m.rule {
-        Some(r) => Rule::from_name(r.get_ref()).ok_or_else(|| {
-            let names: Vec<&str> = Rule::ALL.iter().map(|r| r.name()).collect();
-            source
-                .error(Some(r.span()), format!("unknown rule `{}`", r.get_ref()), "not a quadrature rule")
-                .with_help(format!("`method.rule` is one of: {}", names.join(", ")))
-        })?,
-        None => defaults.rule,
+    let text = |v: &Option<Spanned<String>>| v.as_ref().map(|v| v.get_ref().clone());
+    let value = |v: &Option<Spanned<bool>>| v.as_ref().map(|v| *v.get_ref());
+    let keys = MethodKeys {
+        rule: text(&m.rule),
+        variant: text(&m.variant),
+        reduced: value(&m.reduced),
+        connection: m
+            .connection
+            .as_ref()
+            .map(|k| k.get_ref().iter().map(|row| row.get_ref().iter().map(|x| *x.get_ref()).collect()).collect()),
+        tolerance: m.tolerance.as_ref().map(|t| *t.get_ref()),
+        max_iterations: m.max_iterations.as_ref().map(|n| *n.get_ref()),
+        jacobian: text(&m.jacobian),
+        derivatives: text(&m.derivatives),
+        check_invariance: value(&m.check_invariance),
+        on_energy_jump: text(&m.on_energy_jump),
+        energy_jump_threshold: m.energy_jump_threshold.as_ref().map(|t| *t.get_ref()),
+        order: m.order.as_ref().map(|o| *o.get_ref()),
+        composition: text(&m.composition),
+        atlas: value(&m.atlas),
     };
-    let variant = match &m.variant {
-        Some(v) => match v.get_ref().as_str() {
-            "plus" => Variant::Plus,
-            "minus" => Variant::Minus,
-            other => {
-                return Err(source
-                    .error(Some(v.span()), format!("unknown variant `{other}`"), "not a variant")
-                    .with_help("`method.variant` is `plus` or `minus`"))
-            }
-        },
-        None => defaults.variant,
-    };
-    let tolerance = match &m.tolerance {
-        Some(t) => {
-            let v = finite(source, t, "`method.tolerance`")?;
-            if v <= 0.0 {
-                return Err(source.error(Some(t.span()), "`method.tolerance` must be positive", format!("{v}")));
-            }
-            v
-        }
-        None => defaults.newton.tolerance,
-    };
-    let max_iterations = match &m.max_iterations {
-        Some(n) if *n.get_ref() >= 1 => *n.get_ref() as usize,
-        Some(n) => {
-            return Err(source.error(
-                Some(n.span()),
-                "`method.max_iterations` must be at least 1",
-                format!("{}", n.get_ref()),
-            ))
-        }
-        None => defaults.newton.max_iterations,
-    };
-    let reuse_jacobian = match &m.jacobian {
-        Some(j) => match j.get_ref().as_str() {
-            "reuse" => true,
-            "fresh" => false,
-            other => {
-                return Err(source
-                    .error(Some(j.span()), format!("unknown Jacobian policy `{other}`"), "not a policy")
-                    .with_help(
-                    "`method.jacobian` is `reuse` (one Jacobian per step, chord Newton) or `fresh` (classical Newton)",
-                ))
-            }
-        },
-        None => defaults.newton.reuse_jacobian,
-    };
-    let differentiation = match &m.derivatives {
-        Some(d) => Differentiation::from_name(d.get_ref()).ok_or_else(|| {
-            source
-                .error(Some(d.span()), format!("unknown derivative evaluation `{}`", d.get_ref()), "not a choice")
-                .with_help(
-                    "`method.derivatives` is `auto` (compiled when the Lagrangian allows it), `compiled` or `dual`",
-                )
-        })?,
-        None => defaults.differentiation,
-    };
-    let action = match &m.on_energy_jump {
-        Some(a) => JumpAction::from_name(a.get_ref()).ok_or_else(|| {
-            source
-                .error(Some(a.span()), format!("unknown action `{}`", a.get_ref()), "not an action")
-                .with_help("`method.on_energy_jump` is `warn` (default), `error` or `ignore`")
-        })?,
-        None => defaults.energy_jump.action,
-    };
-    let threshold = match &m.energy_jump_threshold {
-        Some(t) => {
-            let v = finite(source, t, "`method.energy_jump_threshold`")?;
-            if v <= 0.0 {
-                return Err(source.error(
-                    Some(t.span()),
-                    "`method.energy_jump_threshold` must be positive",
-                    format!("{v}"),
-                ));
-            }
-            v
-        }
-        None => defaults.energy_jump.threshold,
-    };
-    let composition = composition(source, m)?;
+    let method = keys::method::method(&keys, coordinates, Spelling::Spec)
+        .map_err(|error| source.refusal(error, |key| method_span(m, key)))?;
     spans.composition = m.composition.as_ref().map(|c| c.span()).or_else(|| m.order.as_ref().map(|o| o.span()));
     spans.reduced = m.reduced.as_ref().map(|r| r.span());
     spans.tolerance = m.tolerance.as_ref().map(|t| t.span());
     spans.energy_jump = m.on_energy_jump.as_ref().map(|a| a.span());
     spans.connection = m.connection.as_ref().map(|c| c.span());
-    let connection = match &m.connection {
-        Some(k) => {
-            let rows = connection(source, k, coordinates)?;
-            let connection = ddirac::Connection::new(&rows)
-                .map_err(|e| source.error(Some(k.span()), e.to_string(), "this connection"));
-            Some(connection?)
-        }
-        None => None,
-    };
-    Ok(Method {
-        rule,
-        variant,
-        reduced: m.reduced.as_ref().is_some_and(|r| *r.get_ref()),
-        connection,
-        newton: NewtonOptions { tolerance, max_iterations, reuse_jacobian },
-        check_invariance: !matches!(&m.check_invariance, Some(c) if !*c.get_ref()),
-        differentiation,
-        energy_jump: EnergyJump { threshold, action },
-        composition,
-        atlas: !matches!(&m.atlas, Some(a) if !*a.get_ref()),
-    })
+    Ok(method)
 }
 
-/// `method.order` and `method.composition`: the composition of a step.
-fn composition(source: &SpecSource, m: &MethodSpec) -> Result<Composition, Box<SpecError>> {
-    let order = match &m.order {
-        Some(o) => match u8::try_from(*o.get_ref()) {
-            Ok(order) if composition::ORDERS.contains(&order) => Some(order),
-            _ => {
-                return Err(source
-                    .error(Some(o.span()), format!("there is no method of order {}", o.get_ref()), "not an order")
-                    .with_help("`method.order` is 2 (the basic step), 4, 6 or 8 (compositions of it)"))
-            }
-        },
-        None => None,
-    };
-    let name = m.composition.as_ref().map(|c| c.get_ref().as_str());
-    Composition::select(order, name).map_err(|why| {
-        let span = m.composition.as_ref().map(|c| c.span());
-        source.error(span, why, "this composition").with_help(
-            "`method.composition` is `suzuki` (order 4), `kahan-li` (orders 6, 8) or `triple-jump` (orders 4, 6, 8)",
-        )
-    })
-}
-
-/// K: one row per group coordinate, one column per shape coordinate.
-fn connection(
-    source: &SpecSource,
-    k: &Spanned<Vec<Numbers>>,
-    coordinates: &[Coordinate],
-) -> Result<Vec<Vec<f64>>, Box<SpecError>> {
-    let of = |role| coordinates.iter().filter(|c| c.role == role).map(|c| c.name.as_str()).collect::<Vec<_>>();
-    let (shape, group) = (of(Role::Shape), of(Role::Group));
-    let expected = format!(
-        "K = h_(d,Σ) has one row per group coordinate ({}) and one column per shape coordinate ({}): {} × {}",
-        group.join(", "),
-        shape.join(", "),
-        group.len(),
-        shape.len()
-    );
-    if k.get_ref().len() != group.len() {
-        return Err(source
-            .error(
-                Some(k.span()),
-                format!("`method.connection` has {} rows, expected {}", k.get_ref().len(), group.len()),
-                "wrong number of rows",
-            )
-            .with_help(expected));
+/// Where `[method]` writes the value of `key`.
+fn method_span(m: &MethodSpec, key: MethodKey) -> Option<Range<usize>> {
+    fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+        v.as_ref().map(|v| v.span())
     }
-    let mut rows = vec![];
-    for (j, row) in k.get_ref().iter().enumerate() {
-        if row.get_ref().len() != shape.len() {
-            return Err(source
-                .error(
-                    Some(row.span()),
-                    format!(
-                        "row {} of `method.connection` has {} entries, expected {}",
-                        j + 1,
-                        row.get_ref().len(),
-                        shape.len()
-                    ),
-                    format!("row for `{}`", group[j]),
-                )
-                .with_help(expected));
-        }
-        rows.push(
-            row.get_ref()
-                .iter()
-                .map(|v| finite(source, v, "an entry of `method.connection`"))
-                .collect::<Result<_, _>>()?,
-        );
+    let connection = m.connection.as_ref().map(|k| k.get_ref());
+    match key {
+        MethodKey::Rule => span(&m.rule),
+        MethodKey::Variant => span(&m.variant),
+        MethodKey::Reduced => span(&m.reduced),
+        MethodKey::Connection => span(&m.connection),
+        MethodKey::ConnectionRow(j) => connection?.get(j).map(|row| row.span()),
+        MethodKey::ConnectionEntry(j, i) => connection?.get(j)?.get_ref().get(i).map(|x| x.span()),
+        MethodKey::Tolerance => span(&m.tolerance),
+        MethodKey::MaxIterations => span(&m.max_iterations),
+        MethodKey::Jacobian => span(&m.jacobian),
+        MethodKey::Derivatives => span(&m.derivatives),
+        MethodKey::CheckInvariance => span(&m.check_invariance),
+        MethodKey::OnEnergyJump => span(&m.on_energy_jump),
+        MethodKey::EnergyJumpThreshold => span(&m.energy_jump_threshold),
+        MethodKey::Order => span(&m.order),
+        MethodKey::Composition => span(&m.composition),
+        MethodKey::Atlas => span(&m.atlas),
     }
-    Ok(rows)
 }
 
 /// `value`, if it is finite; `what` names it in the error.
