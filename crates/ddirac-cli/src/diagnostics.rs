@@ -239,9 +239,3 @@ impl CliError {
         }
     }
 }
-
-impl From<crate::output::FileError> for CliError {
-    fn from(e: crate::output::FileError) -> Self {
-        Self::Output { path: e.path, source: e.source }
-    }
-}

@@ -244,6 +244,12 @@ pub fn json(dir: &Path, name: &str, value: &impl serde::Serialize) -> Result<Pat
     Ok(PathBuf::from(name))
 }
 
+impl From<FileError> for crate::diagnostics::CliError {
+    fn from(e: FileError) -> Self {
+        Self::Output { path: e.path, source: e.source }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;

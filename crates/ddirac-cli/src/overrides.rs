@@ -106,15 +106,9 @@ fn misspelt(key: &str, text: &str) -> Option<String> {
     } else {
         format!("{number:?}")
     };
-    let integer = integral(number).map_or(String::new(), |n| format!(" (`{n}` where the key takes an integer)"));
+    let integer =
+        crate::spec::integral(number).map_or(String::new(), |n| format!(" (`{n}` where the key takes an integer)"));
     Some(format!("`{text}` is not a TOML value; write the number as `{toml}`{integer}; {quote}"))
-}
-
-/// `v` as an i64, if it is one exactly.
-pub fn integral(v: f64) -> Option<i64> {
-    // 2⁶³ is the first f64 above i64::MAX; −2⁶³ is i64::MIN.
-    let bound = 2f64.powi(63);
-    (v.fract() == 0.0 && (-bound..bound).contains(&v)).then_some(v as i64)
 }
 
 #[cfg(test)]

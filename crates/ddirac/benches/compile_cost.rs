@@ -12,9 +12,9 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, CompileCost, NativeProgram, Program, Traced};
 use ddirac::dim::Fixed;
+use ddirac::dim::{self, PairFunction};
 use ddirac::expression::{ExpressionSpec, ExpressionSystem};
 use ddirac::newton::{dual_relative_cost, ACROSS_SOLVES};
 use ddirac::systems::PendulumChain;
@@ -83,10 +83,10 @@ fn row<S: System<N>, const N: usize>(name: &str, system: &S, base: [f64; N]) {
     let (native_residual, native_jacobian) = (call(first), call(mixed));
     let f = Ld(ld, base);
     let dual_residual = per_call(|| {
-        black_box(ad::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), false));
+        black_box(dim::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), false));
     });
     let dual_jacobian = per_call(|| {
-        black_box(ad::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), true));
+        black_box(dim::first_or_mixed(Fixed, &f, &[0.0; N], black_box(&z), true));
     });
     let kept = dual_relative_cost(N) >= ACROSS_SOLVES;
     let step = |residual: f64, jacobian: f64| if kept { 8.0 * residual } else { jacobian + 2.0 * residual };

@@ -2,7 +2,7 @@
 //!
 //! - `chain_mixed/{single_pass,chunked,blocks}/N`: the mixed block of the midpoint L_d in one pass of
 //!   `ad::Mixed<N, N>`, in column chunks of `ad::Mixed<N, CHUNK>` (their crossover sets
-//!   `ad::CROSSOVER`), or in blocks of `ad::Mixed<BLOCK, BLOCK>` as in a dimension chosen at run time
+//!   `dim::CROSSOVER`), or in blocks of `ad::Mixed<BLOCK, BLOCK>` as in a dimension chosen at run time
 //!   (`dim::Dynamic`, the arguments copied into arrays for the chain's Lagrangian);
 //! - `chain_step/N`: time per step of a whole unreduced midpoint run (100 steps, h = 0.01).
 //!
@@ -15,7 +15,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, measurement::WallTime, BenchmarkGroup, Criterion, Throughput};
-use ddirac::ad::{mixed_blocks, mixed_chunked, mixed_single_pass, PairFunction};
+use ddirac::dim::{mixed_blocks, mixed_chunked, mixed_single_pass, PairFunction};
 use ddirac::dim::{Dynamic, Fixed};
 use ddirac::systems::PendulumChain;
 use ddirac::Scalar;

@@ -15,11 +15,12 @@
 //! Where the group translates the group coordinates of both charts (φ equivariant), Dτ maps the group
 //! direction to itself exactly, so the momentum map J = p_g is carried over exactly.
 
+pub use crate::chart::nearest_turns;
 use num_dual::Dual;
 
 use crate::dim::Dim;
 use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
-use crate::{Coordinate, CoordinateKind, Scalar};
+use crate::{Coordinate, Scalar};
 
 /// A step is taken in the main chart where the main chart's measure ([`System::chart_quality`](crate::System::chart_quality)) at
 /// the step's midpoint is at least this (1/√2: 45° from the pole of spherical coordinates, where the
@@ -104,23 +105,6 @@ impl<S: SystemIn<Dm>, Dm: Dim> SystemIn<Dm> for InChart<S, Dm> {
     fn chart_quality(&self, _chart: usize, q: &Dm::Array<f64>) -> f64 {
         self.system.chart_quality(self.chart, q)
     }
-}
-
-/// Main-chart coordinates `q` moved by whole turns of their angles to the representative nearest
-/// `near` (the default of [`System::nearest_in_main`](crate::System::nearest_in_main)).
-///
-/// ```
-/// use ddirac::{atlas::nearest_turns, CoordinateKind::{Angle, Real}};
-/// let q = nearest_turns([0.1, 0.1], &[6.3, 6.3], &[Angle, Real]);
-/// assert_eq!(q, [0.1 + std::f64::consts::TAU, 0.1]);
-/// ```
-pub fn nearest_turns<A: AsMut<[f64]>>(mut q: A, near: &impl AsRef<[f64]>, kinds: &impl AsRef<[CoordinateKind]>) -> A {
-    for ((q, near), kind) in q.as_mut().iter_mut().zip(near.as_ref()).zip(kinds.as_ref()) {
-        if *kind == CoordinateKind::Angle {
-            *q += std::f64::consts::TAU * ((*near - *q) / std::f64::consts::TAU).round();
-        }
-    }
-    q
 }
 
 /// |a − b|∞ / (1 + |a|∞), infinite where an entry of either is not finite: how far a round trip

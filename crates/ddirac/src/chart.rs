@@ -113,3 +113,20 @@ impl<Dm: Dim> ConfigurationIn<Dm> {
         }
     }
 }
+
+/// Main-chart coordinates `q` moved by whole turns of their angles to the representative nearest
+/// `near` (the default of [`System::nearest_in_main`](crate::System::nearest_in_main)).
+///
+/// ```
+/// use ddirac::{chart::nearest_turns, CoordinateKind::{Angle, Real}};
+/// let q = nearest_turns([0.1, 0.1], &[6.3, 6.3], &[Angle, Real]);
+/// assert_eq!(q, [0.1 + std::f64::consts::TAU, 0.1]);
+/// ```
+pub fn nearest_turns<A: AsMut<[f64]>>(mut q: A, near: &impl AsRef<[f64]>, kinds: &impl AsRef<[CoordinateKind]>) -> A {
+    for ((q, near), kind) in q.as_mut().iter_mut().zip(near.as_ref()).zip(kinds.as_ref()) {
+        if *kind == CoordinateKind::Angle {
+            *q += TAU * ((*near - *q) / TAU).round();
+        }
+    }
+    q
+}

@@ -2,6 +2,9 @@
 //! discrete energy L_d(q_k, q_{k+1}) (§7.2), the momentum map J(q, p) = p_g (Lemma 2.1) and Newton
 //! statistics.
 
+/// The error type an output consumer (the observer of [`crate::integrate`], a watch) may return.
+pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
+
 /// One reported row of a trajectory.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Row<'a> {

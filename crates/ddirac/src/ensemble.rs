@@ -21,8 +21,8 @@
 
 use rayon::prelude::*;
 
+use crate::diagnostics::OutputError;
 use crate::diagnostics::Row;
-use crate::integrator::OutputError;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::{DynStepper, DynSystem, Error, InitialMomentum, Input, Method, OutputOptions, Problem, Summary};

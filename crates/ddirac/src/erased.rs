@@ -4,9 +4,9 @@
 use std::any::Any;
 use std::sync::Arc;
 
+use crate::diagnostics::OutputError;
 use crate::diagnostics::{Row, Summary};
 use crate::dim::{Dim, Dynamic, Fixed};
-use crate::integrator::OutputError;
 use crate::mechanics::lagrangian::{Borrowed, SystemIn};
 use crate::{
     CheckReport, Coordinate, Error, Input, Method, OutputOptions, OwnedRowIn, Problem, StateIn, StepReport, StepperIn,

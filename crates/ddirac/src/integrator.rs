@@ -1,13 +1,10 @@
 //! Whole runs: [`integrate`] streams the reported rows of a [`Stepper`] run to an observer, [`solve`]
 //! keeps them in memory.
 
-use crate::diagnostics::{Row, Solution, Summary};
+use crate::diagnostics::{OutputError, Row, Solution, Summary};
 use crate::dim::Dim;
 use crate::mechanics::lagrangian::{Borrowed, SystemIn};
 use crate::{Error, Input, Method, OutputOptions, Problem, StepperIn};
-
-/// The error type an output consumer may return.
-pub type OutputError = Box<dyn std::error::Error + Send + Sync>;
 
 /// Runs `problem` for `system` with `method`, handing every reported row to `observer`.
 ///
@@ -39,11 +36,6 @@ pub fn integrate<S: SystemIn<Dm>, Dm: Dim>(
     }
     integrate_watched(system, problem, method, output, observer, &mut |_| Ok(()))
 }
-
-/// How many steps a run takes between two calls of the watch of [`integrate_watched`]: a call every 64
-/// steps costs nothing measurable, and 64 of the slowest steps the engine takes (a few milliseconds,
-/// a chain of 50 pendula with dual numbers) are a fraction of a second.
-pub const WATCH_STEPS: usize = 64;
 
 /// [`integrate`], calling `watch(k)` before step k every [`WATCH_STEPS`] steps (and before the
 /// first): a caller that must look at something while a run goes on (Python's signal handlers) does

@@ -28,6 +28,7 @@ pub mod chart;
 mod check;
 pub mod compiled;
 pub mod composition;
+mod coordinate;
 pub mod diagnostics;
 pub mod dim;
 mod energy_jump;
@@ -48,6 +49,7 @@ pub mod reduction;
 pub mod sampling;
 mod scalar;
 mod scheme;
+mod setup;
 mod sizes;
 pub mod stack;
 mod stepper;
@@ -56,11 +58,12 @@ pub mod systems;
 
 pub use check::{check, ChartFinding, CheckReport, Finding, CONSTRAINT_TOLERANCE, ROUND_TRIP_TOLERANCE};
 pub use composition::Composition;
-pub use diagnostics::{DerivativePath, Row, Solution, Stats, Summary, Warning, WarningKind};
+pub use coordinate::{Coordinate, CoordinateKind, Role, Split};
+pub use diagnostics::{DerivativePath, OutputError, Row, Solution, Stats, Summary, Warning, WarningKind};
 pub use energy_jump::{EnergyJump, JumpAction, ENERGY_DRIFT};
 pub use erased::{DynRow, DynState, DynStepper, DynSystem, Erased, ErasedDynamic, Holds};
 pub use error::{ChartProblem, EnergyChange, Error, Hypothesis, Input, Reason, SingularLegendre, Time};
-pub use integrator::{integrate, integrate_watched, solve, OutputError, WATCH_STEPS};
+pub use integrator::{integrate, integrate_watched, solve};
 pub use mechanics::discrete_lagrangian::{DiscreteLagrangian, Rule};
 pub use newton::NewtonOptions;
 /// The scalar trait user Lagrangians are written against (`DualNum<Primitive = f64>`), re-exported so that
@@ -72,6 +75,6 @@ pub use scalar::{RuntimeInput, Scalar};
 pub use sizes::{sizes_text, SIZES};
 pub use stepper::{
     OwnedRow, OwnedRowIn, State, StateIn, StepReport, Stepper, StepperIn, IMPLAUSIBLE_ENERGY_CHANGE, KICK,
-    LEGENDRE_DROP, LOOSE_TOLERANCE_MARGIN, MAX_ANGLE_STEP, MAX_SUBDIVISION,
+    LEGENDRE_DROP, LOOSE_TOLERANCE_MARGIN, MAX_ANGLE_STEP, MAX_SUBDIVISION, WATCH_STEPS,
 };
-pub use system::{Chart, Coordinate, CoordinateKind, Role, Split, System};
+pub use system::{Chart, System};

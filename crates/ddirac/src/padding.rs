@@ -20,10 +20,10 @@
 //! (after their sizes are checked against n, so errors name the system's own sizes), and rows,
 //! states, summaries and the check's report are cut back to n.
 
-use crate::ad::{self, PairFunction};
+use crate::diagnostics::OutputError;
 use crate::diagnostics::{Row, Summary};
 use crate::dim::Fixed;
-use crate::integrator::OutputError;
+use crate::dim::{self, PairFunction};
 use crate::mechanics::legendre;
 use crate::{
     CheckReport, Connection, Coordinate, DynRow, DynState, DynStepper, DynSystem, Error, InitialMomentum, Input,
@@ -69,7 +69,7 @@ fn reference_scale<S: System<N>, const N: usize>(system: &S) -> f64 {
         if usable(velocities) {
             return velocities;
         }
-        let mixed = ad::mixed(Fixed, &Lagrangian(system), &q, &v).dadb.amax();
+        let mixed = dim::mixed(Fixed, &Lagrangian(system), &q, &v).dadb.amax();
         if usable(mixed) {
             return mixed;
         }

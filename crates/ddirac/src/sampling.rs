@@ -6,8 +6,8 @@
 //! the domain of a `sqrt`, across a singular potential), so that a Lagrangian defined only on a
 //! small neighbourhood of the initial data is still tested there and never passes for want of points.
 
-use crate::ad::FirstDerivatives;
 use crate::dim::Dim;
+use crate::dim::FirstDerivatives;
 use crate::mechanics::lagrangian::Lagrangian;
 use crate::DiscreteLagrangian;
 

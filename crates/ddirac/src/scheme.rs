@@ -7,11 +7,11 @@
 use crate::dim::{Dim, Entry, Fixed};
 use crate::Scalar;
 
-use crate::ad::{self, FirstDerivatives, PairFunction};
 use crate::compiled::{
     self, pair_programs_with_runtime_inputs, CompileCost, CompileError, CompiledPair, LinearStep, PairPrograms,
     Refusal, Traced,
 };
+use crate::dim::{self, FirstDerivatives, PairFunction};
 use crate::{DerivativePath, Differentiation};
 
 /// One evaluation of a scheme's step equations at a trial point z.
@@ -161,7 +161,7 @@ impl<Dm: Dim> StepDerivatives<Dm> {
             refusal => refusal,
         };
         let compiled = CompiledPair::from_programs(dim, &programs).and_then(|pair| {
-            let dual = ad::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
+            let dual = dim::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
             let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
             pair.check_against(base, z, (first, dual.dadb), 1e-9)?;
             let equations = scheme.equations();
@@ -206,7 +206,7 @@ impl<Dm: Dim> StepDerivatives<Dm> {
             Self::Dual => true,
             Self::Compiled { pair, .. } => {
                 let dim = Dm::of(base);
-                let dual = ad::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
+                let dual = dim::mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), z);
                 let first = FirstDerivatives { value: dual.value, da: dual.da, db: dual.db };
                 pair.check_against(base, z, (first, dual.dadb), 1e-9).is_ok()
             }
@@ -253,7 +253,7 @@ impl<Dm: Dim> StepDerivatives<Dm> {
         };
         // Where a guard of the trace fails (another branch of a comparison), dual numbers answer.
         compiled.unwrap_or_else(|| {
-            ad::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &z, with_mixed)
+            dim::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &z, with_mixed)
         })
     }
 }
@@ -306,7 +306,7 @@ fn check_linear<Dm: Dim>(
 ) -> Result<(), CompileError> {
     let dim = Dm::of(base);
     let solution = linear.solve(base, momenta);
-    let (dual, _) = ad::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &solution.z, false);
+    let (dual, _) = dim::first_or_mixed(dim, &Generating { scheme, base }, &dim.array(|_| 0.0), &solution.z, false);
     let evaluation = equations.evaluate(momenta, &dual);
     let scale = momenta.as_ref().iter().chain(Dm::entries(&dual.da)).fold(1.0f64, |m, x| m.max(x.abs()));
     let closest = |c: f64, d: f64, s: f64| (c - d).abs() <= 1e-9 * s;

@@ -5,7 +5,7 @@
 //! per step after set-up, with dual numbers and with compiled derivatives, for the N of
 //! [`LINKS`] that are engine sizes ([`ddirac::systems::CHAIN_LINKS`]). Both give the same
 //! numbers (the library's tests hold them equal bit for bit), so the ratio is the price of the
-//! heap-held arrays and of dual numbers in blocks (`ddirac::ad::first_blocks`).
+//! heap-held arrays and of dual numbers in blocks (`ddirac::dim::first_blocks`).
 
 use ddirac::systems::{DynamicPendulumChain, CHAIN_LINKS};
 use ddirac::{Differentiation, InitialMomentum, Method, Problem, Rule, Variant};

@@ -52,6 +52,7 @@ mod dop853 {
 mod ensemble;
 mod expression;
 mod harness;
+mod interpolation;
 mod linearity;
 mod print;
 mod race;

@@ -21,7 +21,7 @@ use ddirac::{Composition, Differentiation, DynSystem, InitialMomentum, Method, P
 use serde::Serialize;
 
 use super::harness::{compare, Contender};
-use super::work_precision::{between, bracket};
+use super::interpolation::{between, bracket};
 use super::{built_in, dop853, failed, print, Settings, LAST_ROW_ONLY};
 use crate::plot::{self, Figure, Panel, Scale, Series};
 

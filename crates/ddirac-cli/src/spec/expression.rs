@@ -63,7 +63,7 @@ pub fn build(
     let values = parameters
         .iter()
         .map(|(name, value)| {
-            let v = super::validate::finite(source, value, &format!("parameter `{}`", name.get_ref()))?;
+            let v = super::finite(source, value, &format!("parameter `{}`", name.get_ref()))?;
             Ok((name.get_ref().clone(), v))
         })
         .collect::<Result<Vec<_>, Box<SpecError>>>()?;

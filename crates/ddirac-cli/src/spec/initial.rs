@@ -7,7 +7,7 @@ use std::ops::Range;
 use ddirac::InitialMomentum;
 use toml::Spanned;
 
-use super::validate::Spans;
+use super::spans::Spans;
 use super::{Spec, Vector};
 use crate::diagnostics::{SpecError, SpecSource};
 use crate::keys::initial::{InitialKey, Values, Which};

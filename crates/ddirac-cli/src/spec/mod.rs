@@ -25,6 +25,7 @@
 mod expression;
 mod initial;
 mod lists;
+mod spans;
 mod strings;
 mod time;
 mod validate;
@@ -351,7 +352,7 @@ fn integer_help(message: &str) -> Option<String> {
         return None;
     }
     let value: f64 = value.parse().ok()?;
-    Some(match crate::overrides::integral(value) {
+    Some(match integral(value) {
         Some(n) => format!("this key takes an integer: write `{n}`, without a decimal point or exponent"),
         None => format!(
             "this key takes an integer, in {}..={}: write one without a decimal point or exponent",
@@ -361,9 +362,26 @@ fn integer_help(message: &str) -> Option<String> {
     })
 }
 
+/// `v` as an i64, if it is one exactly.
+pub fn integral(v: f64) -> Option<i64> {
+    // 2⁶³ is the first f64 above i64::MAX; −2⁶³ is i64::MIN.
+    let bound = 2f64.powi(63);
+    (v.fract() == 0.0 && (-bound..bound).contains(&v)).then_some(v as i64)
+}
+
 /// Checks only that the text is TOML, reporting a syntax error at its span.
 pub fn syntax(source: &SpecSource) -> Result<(), Box<SpecError>> {
     toml::from_str::<toml::Table>(source.text())
         .map(drop)
         .map_err(|e| source.error(e.span(), format!("invalid TOML: {}", e.message().trim_end()), "here"))
+}
+
+/// `value`, if it is finite; `what` names it in the error.
+pub(crate) fn finite(source: &SpecSource, value: &Number, what: &str) -> Result<f64, Box<SpecError>> {
+    let v = *value.get_ref();
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(source.error(Some(value.span()), format!("{what} is not finite ({v})"), "not a finite number"))
+    }
 }

@@ -15,7 +15,8 @@
 //! within (1 + |q0|)/2 of the initial configuration, taken into the chart by ψ; those where the
 //! chart's quality is positive and finite (its domain) are kept.
 
-use crate::atlas::{nearest_turns, round_trip_distance, InChart, SWITCH_BELOW};
+use crate::atlas::{round_trip_distance, InChart, SWITCH_BELOW};
+use crate::chart::nearest_turns;
 use crate::diagnostics::{Warning, WarningKind};
 use crate::dim::Dim;
 use crate::error::ChartProblem;

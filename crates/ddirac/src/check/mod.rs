@@ -20,7 +20,7 @@ use crate::mechanics::legendre;
 use crate::periodicity::{periodicity_deviations, PERIODICITY_TOLERANCE};
 use crate::reduction::invariance::{invariance_deviations, INVARIANCE_TOLERANCE};
 use crate::sampling::{self, Deviation, ENOUGH};
-use crate::stepper::Setup;
+use crate::setup::Setup;
 use crate::{DiscreteLagrangian, Error, Hypothesis, InitialMomentum, Method, Problem};
 
 pub(crate) use charts::atlas_verdict;

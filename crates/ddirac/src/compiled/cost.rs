@@ -34,11 +34,11 @@
 //! dual numbers is the expression language's interpreter (a Lagrangian written in Rust takes
 //! under 1 ns); the flops are those of one product of [`crate::ad`]'s numbers: 4n + 1 for a
 //! residual, 3n² + 4n + 1 for a Jacobian in one pass, ⌈n/4⌉ · (12n + 2(n + 4) + 1) in column chunks
-//! above [`crate::ad::CROSSOVER`]. The estimate is within a factor of two of the measurements, and
+//! above [`crate::dim::CROSSOVER`]. The estimate is within a factor of two of the measurements, and
 //! leans towards compiling for Lagrangians written in Rust, whose dual numbers it overestimates.
 
 use super::{PairPrograms, Program};
-use crate::ad::{CHUNK, CROSSOVER};
+use crate::dim::{CHUNK, CROSSOVER};
 use crate::newton::{dual_relative_cost, ACROSS_SOLVES};
 
 /// Seconds of native code generation per program (the JIT module and the function around the code).

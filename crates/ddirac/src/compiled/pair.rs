@@ -1,5 +1,5 @@
 //! The compiled derivatives of a pair function f(base, a, b) at a = 0: what one Newton iterate of a
-//! step needs (see [`crate::ad::first_or_mixed`] for the same numbers by dual numbers).
+//! step needs (see [`crate::dim::first_or_mixed`] for the same numbers by dual numbers).
 //!
 //! A step evaluates f = L_d(base + a, base + b) (or the reduced l̂) at a = 0 and the trial unknowns
 //! b: the value, ∂f/∂a (the residual), ∂f/∂b (the next momenta) and, for a fresh Jacobian, the
@@ -13,8 +13,8 @@ use super::executable::Executable;
 #[cfg(feature = "jit")]
 use super::JitError;
 use super::{pair_programs, MalformedProgram, NotCompiled, PairPrograms, Program, Traced};
-use crate::ad::FirstDerivatives;
 use crate::dim::Dim;
+use crate::dim::FirstDerivatives;
 use crate::RuntimeInput;
 
 /// Why derivatives could not be compiled.

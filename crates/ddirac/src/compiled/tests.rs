@@ -9,7 +9,7 @@ use num_dual::{DualNum, DualStruct};
 
 use super::graph::Graph;
 use super::{pair_programs, Instruction, NotCompiled, PairPrograms, Program, Traced};
-use crate::ad::{self, PairFunction};
+use crate::dim::{self, PairFunction};
 use crate::expression::{ExpressionSpec, ExpressionSystem};
 use crate::systems::{ChargedParticle, DoubleSphericalPendulum, HeavyTop, Kepler, PendulumChain, TwoBody};
 use crate::{Coordinate, DiscreteLagrangian, Rule, System};
@@ -62,7 +62,7 @@ fn assert_block_close(what: &str, compiled: &[f64], dual: &[f64], tolerance: f64
     }
 }
 
-/// Traces `f` at (`base`, `b`), then compares both programs with [`ad::mixed`] at `points` random
+/// Traces `f` at (`base`, `b`), then compares both programs with [`dim::mixed`] at `points` random
 /// points within `radius` of it. Returns the programs.
 fn compare<G: Generic<N>, const N: usize>(f: &G, base: [f64; N], b: [f64; N], radius: f64) -> PairPrograms {
     let programs = pair_programs(Fixed, |base, a, b| f.eval(base, a, b), &base, &b).expect("the function compiles");
@@ -73,7 +73,7 @@ fn compare<G: Generic<N>, const N: usize>(f: &G, base: [f64; N], b: [f64; N], ra
         let (base, b) = (random.point(&base, radius), random.point(&b, radius));
         let inputs: Vec<f64> = base.iter().chain(&b).copied().collect();
         let (first, mixed) = (run(&programs.first, &inputs), run(&programs.mixed, &inputs));
-        let dual = ad::mixed(Fixed, &AtBase { f, base }, &[0.0; N], &b);
+        let dual = dim::mixed(Fixed, &AtBase { f, base }, &[0.0; N], &b);
         assert_eq!(first[..], mixed[..1 + 2 * N], "both programs compute f, ∂f/∂a, ∂f/∂b alike");
         assert_block_close("value", &first[..1], &[dual.value], 1e-13);
         assert_block_close("∂f/∂a", &first[1..1 + N], dual.da.as_slice(), 1e-12);

@@ -187,7 +187,7 @@ fn check_names(
         if FUNCTIONS.contains(&c.name.as_str()) {
             return Err(invalid("it is the name of a function"));
         }
-        if let Some(reason) = super::system::constant(&c.name) {
+        if let Some(reason) = super::functions::constant(&c.name) {
             return Err(invalid(&reason));
         }
         let first = if spec.parameters.iter().any(|(p, _)| p == &c.name) {

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use super::ast::{Expr, ExprKind};
-use super::compile::{Entry, Scope};
+use super::scope::{Entry, Scope};
 use super::{parse, CycleStep, ExpressionError, Origin};
 
 /// A definition being visited: its tree, the references to definitions in it (in source order), how

@@ -13,6 +13,14 @@ pub const FUNCTIONS: &[&str] = &[
 /// coordinate, parameter or definition may take their names.
 pub const CONSTANTS: &[(&str, f64)] = &[("pi", std::f64::consts::PI)];
 
+/// Why `name` cannot be declared, if it names a constant of the language.
+pub(super) fn constant(name: &str) -> Option<String> {
+    CONSTANTS
+        .iter()
+        .find(|(c, _)| *c == name)
+        .map(|(c, value)| format!("it is the constant `{c}` = {value} of the language, which every expression may use"))
+}
+
 /// A function of the language: an operation of one or two operands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Function {

@@ -67,17 +67,18 @@ mod functions;
 mod lagrangian;
 mod lexer;
 mod parser;
+mod scope;
 mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use atlas::{ChartPart, ChartSpec};
-pub use compile::Scope;
 pub use compiled_expression::CompiledExpression;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use functions::{CONSTANTS, FUNCTIONS};
 pub use lagrangian::ExpressionLagrangian;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};
+pub use scope::Scope;
 pub use system::{ExpressionSpec, ExpressionSystem};
 
 /// A byte range `start..end` in a source text.

@@ -337,14 +337,6 @@ pub(super) fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError
     Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions, atlas })
 }
 
-/// Why `name` cannot be declared, if it names a constant of the language.
-pub(super) fn constant(name: &str) -> Option<String> {
-    CONSTANTS
-        .iter()
-        .find(|(c, _)| *c == name)
-        .map(|(c, value)| format!("it is the constant `{c}` = {value} of the language, which every expression may use"))
-}
-
 /// Checks that every declared name is an identifier, not a function or a constant, and declared once.
 fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
     if spec.coordinates.is_empty() {
@@ -366,7 +358,7 @@ fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
         if FUNCTIONS.contains(&name) {
             return Err(invalid("it is the name of a function"));
         }
-        if let Some(reason) = constant(name) {
+        if let Some(reason) = super::functions::constant(name) {
             return Err(invalid(&reason));
         }
         if let Some((_, first)) = declared.iter().find(|(n, _)| n == name) {

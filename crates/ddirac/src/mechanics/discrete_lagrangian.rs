@@ -17,7 +17,7 @@ use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
-use crate::ad::{self, PairFunction};
+use crate::dim::{self, PairFunction};
 
 use crate::{RuntimeInput, System};
 
@@ -179,7 +179,7 @@ impl<S> DiscreteLagrangian<S> {
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (base + δ0, base + δ1), by automatic differentiation
-    /// ([`ad::mixed`]).
+    /// ([`dim::mixed`]).
     pub fn derivatives_local<const N: usize>(
         &self,
         base: &[f64; N],
@@ -189,17 +189,17 @@ impl<S> DiscreteLagrangian<S> {
     where
         S: System<N>,
     {
-        let d = ad::mixed(Fixed, &Local { ld: self, base }, &(*d0).into(), &(*d1).into());
+        let d = dim::mixed(Fixed, &Local { ld: self, base }, &(*d0).into(), &(*d1).into());
         Derivatives { value: d.value, d1: d.da, d2: d.db, d1d2: d.dadb }
     }
 
-    /// L_d, D1 L_d and D2 L_d at (base + δ0, base + δ1), without the mixed block ([`ad::first`]).
+    /// L_d, D1 L_d and D2 L_d at (base + δ0, base + δ1), without the mixed block ([`dim::first`]).
     pub fn first_derivatives_local<const N: usize>(
         &self,
         base: &[f64; N],
         d0: &SVector<f64, N>,
         d1: &SVector<f64, N>,
-    ) -> ad::FirstDerivatives<Fixed<N>>
+    ) -> dim::FirstDerivatives<Fixed<N>>
     where
         S: System<N>,
     {
@@ -212,11 +212,11 @@ impl<S> DiscreteLagrangian<S> {
         base: &Dm::Array<f64>,
         d0: &Dm::Array<f64>,
         d1: &Dm::Array<f64>,
-    ) -> ad::FirstDerivatives<Dm>
+    ) -> dim::FirstDerivatives<Dm>
     where
         S: Lagrangian<Dm>,
     {
-        ad::first(Dm::of(base), &Local { ld: self, base }, d0, d1)
+        dim::first(Dm::of(base), &Local { ld: self, base }, d0, d1)
     }
 
     /// L_d, D1 L_d, D2 L_d and D1 D2 L_d at (q0, q1).

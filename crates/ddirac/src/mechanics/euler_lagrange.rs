@@ -12,9 +12,9 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::ad::{self, PairFunction};
 use crate::compiled::{CompiledPair, Traced};
 use crate::dim::Fixed;
+use crate::dim::{self, PairFunction};
 use crate::{Scalar, System};
 
 /// The Euler–Lagrange vector field of a system, with its derivatives compiled or by dual numbers.
@@ -91,8 +91,8 @@ impl<'a, S: System<N>, const N: usize> EulerLagrange<'a, S, N> {
         let (dl_dq, dq_dv, mass): (SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>) = match compiled {
             Some(parts) => parts,
             None => {
-                let pv = ad::mixed(Fixed, &PositionVelocity { system: self.system, q: *q }, &[0.0; N], v);
-                let vv = ad::mixed(Fixed, &VelocityVelocity { system: self.system, q: *q }, &[0.0; N], v);
+                let pv = dim::mixed(Fixed, &PositionVelocity { system: self.system, q: *q }, &[0.0; N], v);
+                let vv = dim::mixed(Fixed, &VelocityVelocity { system: self.system, q: *q }, &[0.0; N], v);
                 (pv.da, pv.dadb, vv.dadb)
             }
         };

@@ -69,7 +69,7 @@ pub trait SystemIn<Dm: Dim>: Lagrangian<Dm> {
         near: &Dm::Array<f64>,
         kinds: &Dm::Array<CoordinateKind>,
     ) -> Dm::Array<f64> {
-        crate::atlas::nearest_turns(q, near, kinds)
+        crate::chart::nearest_turns(q, near, kinds)
     }
 }
 

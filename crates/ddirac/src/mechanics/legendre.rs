@@ -9,7 +9,7 @@ use crate::mechanics::lagrangian::Lagrangian;
 use crate::Scalar;
 use nalgebra::{SMatrix, SVector};
 
-use crate::ad::{self, PairFunction};
+use crate::dim::{self, PairFunction};
 use crate::linalg::Factorization;
 use crate::System;
 
@@ -62,7 +62,7 @@ fn velocity_gradient<Dm: Dim, S: Lagrangian<Dm>>(
     v: &Dm::Array<f64>,
 ) -> Dm::Vector {
     let zero = dim.array(|_| 0.0);
-    ad::first(dim, &AtVelocity { system, q, v }, &zero, &zero).da
+    dim::first(dim, &AtVelocity { system, q, v }, &zero, &zero).da
 }
 
 /// The rank of ∂²L/∂v² at (q, v), counting pivots above 10⁻¹⁰ of its largest entry; 0 when the
@@ -138,7 +138,7 @@ pub(crate) fn velocity_hessian_in<Dm: Dim, S: Lagrangian<Dm>>(
     v: &Dm::Array<f64>,
 ) -> (f64, Dm::Vector, Dm::Matrix) {
     let zero = dim.array(|_| 0.0);
-    let d = ad::mixed(dim, &AtVelocity { system, q, v }, &zero, &zero);
+    let d = dim::mixed(dim, &AtVelocity { system, q, v }, &zero, &zero);
     (d.value, d.da, d.dadb)
 }
 

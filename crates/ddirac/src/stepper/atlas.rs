@@ -11,9 +11,9 @@
 use super::progress::{Progress, Record};
 use super::{ChartStepper, OwnedRowIn, StateIn, StepReport};
 use crate::atlas::{self, InChart, SWITCH_BELOW};
+use crate::diagnostics::OutputError;
 use crate::diagnostics::{Row, Summary};
 use crate::dim::{Dim, Fixed};
-use crate::integrator::OutputError;
 use crate::mechanics::lagrangian::SystemIn;
 use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split};
 
@@ -347,7 +347,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         let coordinates = atlas::all_charts(&self.system).swap_remove(chart);
         let kinds = self.dim.array(|i| coordinates[i].kind);
         let there = atlas::point(&self.system, chart, 0, q);
-        let back = atlas::nearest_turns(atlas::point(&self.system, 0, chart, &there), q, &kinds);
+        let back = crate::chart::nearest_turns(atlas::point(&self.system, 0, chart, &there), q, &kinds);
         let apart = atlas::round_trip_distance(q.as_ref(), back.as_ref());
         if apart <= crate::ROUND_TRIP_TOLERANCE {
             return Ok(());
@@ -430,7 +430,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         while !self.is_finished() {
             if until_watch == 0 {
                 watch(self.k()).map_err(Error::Output)?;
-                until_watch = crate::integrator::WATCH_STEPS;
+                until_watch = super::WATCH_STEPS;
             }
             until_watch -= 1;
             let row = (until_report == 0).then(|| self.row());

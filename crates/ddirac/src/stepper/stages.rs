@@ -8,7 +8,7 @@ use super::{Equipped, FirstStep};
 use crate::diagnostics::DerivativePath;
 use crate::dim::Dim;
 use crate::scheme::Scheme;
-use crate::{Differentiation, Error, Input, Method, Rule};
+use crate::{Differentiation, Error, Method};
 
 /// Pivots below this fraction of the Jacobian's largest entry count as zero in the test that the
 /// step equations determine the motion ([`Stages::first_step_rank`]).
@@ -142,14 +142,4 @@ impl<Sc: Scheme<Dm>, Dm: Dim> Stages<Sc, Dm> {
             e.closed_form = e.serves(momenta);
         }
     }
-}
-
-/// Refuses a composition of a basic method that is not symmetric: the left and right rules are each
-/// other's adjoints, and a symmetric composition of either alone keeps order 1.
-pub(crate) fn check_symmetric(method: &Method) -> Result<(), Error> {
-    if method.composition.is_basic() || matches!(method.rule, Rule::Midpoint | Rule::Trapezoid) {
-        return Ok(());
-    }
-    let why = crate::Reason::NotSymmetric { order: method.composition.order(), rule: method.rule.name() };
-    Err(Error::Invalid { what: Input::Composition, why })
 }

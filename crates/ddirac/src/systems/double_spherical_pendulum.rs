@@ -272,7 +272,7 @@ impl System<4> for DoubleSphericalPendulum {
         // whole turns instead of ϑ1 and ϑ2.
         let azimuths = |q: &[f64; 4]| [q[0] - q[2], q[1], q[0] + q[2], q[3]];
         let kinds = [crate::CoordinateKind::Angle; 4];
-        let [theta1, phi1, theta2, phi2] = crate::atlas::nearest_turns(azimuths(&q), &azimuths(near), &kinds);
+        let [theta1, phi1, theta2, phi2] = crate::chart::nearest_turns(azimuths(&q), &azimuths(near), &kinds);
         [0.5 * (theta1 + theta2), phi1, 0.5 * (theta2 - theta1), phi2]
     }
 }

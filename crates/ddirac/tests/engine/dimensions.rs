@@ -2,8 +2,8 @@
 //! whether the dimension is fixed when the engine is compiled or chosen at run time: Newton's method
 //! and compiled derivatives here, the dual numbers in the library's `ad` tests.
 
-use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{CompiledPair, Traced};
+use ddirac::dim::{self, PairFunction};
 use ddirac::dim::{Dim, Dynamic, Fixed};
 use ddirac::newton::{self, KeptJacobian};
 use ddirac::NewtonOptions;
@@ -141,12 +141,12 @@ fn compiled_alike<const N: usize>() {
             coupled(&base, a, b)
         }
     }
-    let dual = ad::mixed(Dynamic(N), &F(&base), &vec![0.0; N], &b.to_vec());
+    let dual = dim::mixed(Dynamic(N), &F(&base), &vec![0.0; N], &b.to_vec());
     dynamic
         .check_against(
             &base.to_vec(),
             &b.to_vec(),
-            (ad::FirstDerivatives { value: dual.value, da: dual.da, db: dual.db }, dual.dadb),
+            (dim::FirstDerivatives { value: dual.value, da: dual.da, db: dual.db }, dual.dadb),
             1e-12,
         )
         .unwrap();

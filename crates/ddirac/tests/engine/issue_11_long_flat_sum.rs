@@ -3,9 +3,9 @@
 //! any pass over the tree (compiling, evaluating, tracing, differentiating), while real nesting is
 //! still refused cleanly. The report of the command line is tested in the crate ddirac-cli.
 
-use ddirac::ad::{self, PairFunction};
 use ddirac::compiled::{pair_programs, Traced};
 use ddirac::dim::Fixed;
+use ddirac::dim::{self, PairFunction};
 use ddirac::expression::{parse, CompiledExpression, ExprKind, ExpressionSpec, ExpressionSystem, Scope, SyntaxError};
 use ddirac::{solve, Coordinate, Differentiation, InitialMomentum, Method, OutputOptions, Problem};
 
@@ -40,7 +40,7 @@ fn a_sum_of_a_hundred_thousand_terms_parses_compiles_and_differentiates() {
     let expected = v * v + TERMS as f64 * x;
     assert!((program.eval(&[x, v]) - expected).abs() <= 1e-9 * expected);
     // By dual numbers: ∂L/∂x = n, ∂L/∂ẋ = 2ẋ.
-    let d = ad::first(Fixed, &Lagrangian(&program), &[x], &[v]);
+    let d = dim::first(Fixed, &Lagrangian(&program), &[x], &[v]);
     assert!((d.value - expected).abs() <= 1e-9 * expected);
     assert!((d.da[0] - TERMS as f64).abs() <= 1e-9 * TERMS as f64);
     assert!((d.db[0] - 2.0 * v).abs() <= 1e-12);

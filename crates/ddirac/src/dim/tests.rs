@@ -1,12 +1,12 @@
-//! The dual numbers against num-dual's `partial_hessian` on functions that use every operation.
+//! The dual numbers ([`crate::ad`]) and each dimension's way of running them, against num-dual's
+//! `partial_hessian` on functions that use every operation.
 
-use crate::dim::Fixed;
+use crate::ad::Mixed;
 use crate::Scalar;
 use nalgebra::SVector;
 use num_dual::{partial_hessian, HyperDualSVec64};
 
 use super::*;
-use crate::dim::Dynamic;
 
 /// Uses every arithmetic operator and elementary function on values where all are defined.
 struct Everything;

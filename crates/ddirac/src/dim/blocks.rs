@@ -7,8 +7,8 @@
 //! one pass with n-wide numbers (⌈n/B⌉² passes of B² mixed entries each), and every entry comes from
 //! the same arithmetic as in a single pass, so the numbers are the same.
 
-use super::{FirstDerivatives, Gradient, Mixed, MixedDerivatives, PairFunction};
-use crate::dim::{Dim, Dynamic};
+use super::{Dim, Dynamic, FirstDerivatives, MixedDerivatives, PairFunction};
+use crate::ad::{Gradient, Mixed};
 
 /// Arguments of a and of b per pass.
 pub const BLOCK: usize = 8;
@@ -53,7 +53,7 @@ impl<T> Seeds<T> {
 /// [`super::mixed`] in a [`Dynamic`] dimension: ⌈n/BLOCK⌉² passes.
 ///
 /// ```
-/// use ddirac::ad::{mixed, PairFunction};
+/// use ddirac::dim::{mixed, PairFunction};
 /// use ddirac::dim::{Dim, Dynamic};
 /// use num_dual::DualNum;
 /// /// f = Σ a_i b_{i+1} sin(b_i): entries of the mixed block in many blocks.

@@ -7,7 +7,14 @@
 //! for `Fixed<N>` it compiles to the code of plain `[T; N]` and `SMatrix<f64, N, N>`, and the same
 //! operations in the same order make both give the same numbers, bit for bit.
 
-use crate::ad::{self, FirstDerivatives, MixedDerivatives, PairFunction};
+mod blocks;
+mod derivatives;
+
+pub use blocks::{first_blocks, mixed_blocks, BLOCK};
+pub use derivatives::{
+    first, first_or_mixed, first_single_pass, mixed, mixed_chunked, mixed_single_pass, FirstDerivatives,
+    MixedDerivatives, PairFunction, CHUNK, CROSSOVER,
+};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::fmt::Debug;
 use std::ops::{Index, IndexMut, SubAssign};
@@ -81,10 +88,10 @@ pub trait Dim: Copy + Debug + PartialEq + Send + Sync + 'static {
     /// The entries of a matrix, column by column.
     fn matrix_entries(m: &Self::Matrix) -> &[f64];
 
-    /// Value, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b of f at (a, b) by dual numbers ([`ad::mixed`]).
+    /// Value, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b of f at (a, b) by dual numbers ([`mixed`]).
     fn mixed<F: PairFunction<Self>>(self, f: &F, a: &Self::Array<f64>, b: &Self::Array<f64>) -> MixedDerivatives<Self>;
 
-    /// Value, ∂f/∂a and ∂f/∂b of f at (a, b) by dual numbers ([`ad::first`]).
+    /// Value, ∂f/∂a and ∂f/∂b of f at (a, b) by dual numbers ([`first`]).
     fn first<F: PairFunction<Self>>(self, f: &F, a: &Self::Array<f64>, b: &Self::Array<f64>) -> FirstDerivatives<Self>;
 
     /// `f` of a buffer of at least 5n + 1 zeros: on the stack for a fixed dimension (where a compiled
@@ -148,16 +155,16 @@ impl<const N: usize> Dim for Fixed<N> {
     }
 
     fn mixed<F: PairFunction<Self>>(self, f: &F, a: &[f64; N], b: &[f64; N]) -> MixedDerivatives<Self> {
-        if N <= ad::CROSSOVER {
-            ad::mixed_single_pass(f, a, b)
+        if N <= CROSSOVER {
+            mixed_single_pass(f, a, b)
         } else {
-            ad::mixed_chunked(f, a, b)
+            mixed_chunked(f, a, b)
         }
     }
 
     #[inline(always)]
     fn first<F: PairFunction<Self>>(self, f: &F, a: &[f64; N], b: &[f64; N]) -> FirstDerivatives<Self> {
-        ad::first_single_pass(f, a, b)
+        first_single_pass(f, a, b)
     }
 
     #[inline(always)]
@@ -220,7 +227,7 @@ impl Dim for Dynamic {
     }
 
     fn mixed<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> MixedDerivatives<Self> {
-        ad::mixed_blocks(self, f, a, b)
+        mixed_blocks(self, f, a, b)
     }
 
     fn scratch<R>(self, f: impl FnOnce(&mut [f64]) -> R) -> R {
@@ -228,7 +235,7 @@ impl Dim for Dynamic {
     }
 
     fn first<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> FirstDerivatives<Self> {
-        ad::first_blocks(self, f, a, b)
+        first_blocks(self, f, a, b)
     }
 }
 
@@ -261,3 +268,6 @@ impl Column for DVector<f64> {
 
 /// The n × n matrix of a [`Column`]'s dimension.
 pub type MatrixOf<V> = <<V as Column>::Dim as Dim>::Matrix;
+
+#[cfg(test)]
+mod tests;
