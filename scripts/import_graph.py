@@ -201,9 +201,14 @@ def main() -> int:
         print(" ↔ ".join(component), "   (", "; ".join(f"{v} → {', '.join(ws)}" for v, ws in inner.items()), ")")
     if not found:
         print(f"no circle among the {len(edges)} modules of {args.crate}")
-        if args.layers:
-            for depth, layer in enumerate(layers(edges)):
-                print(f"{depth:3}  {'  '.join(layer)}")
+    if args.layers:  # a circle counts as one module, its names joined by ↔
+        merged = {v: " ↔ ".join(c) for c in found for v in c}
+        condensed: dict[str, set[str]] = {}
+        for v, ws in edges.items():
+            a = merged.get(v, v)
+            condensed.setdefault(a, set()).update(merged.get(w, w) for w in ws if merged.get(w, w) != a)
+        for depth, layer in enumerate(layers(condensed)):
+            print(f"{depth:3}  {'  '.join(layer)}")
     return 1 if (args.check and found) else 0
 
 

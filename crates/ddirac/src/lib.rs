@@ -46,6 +46,7 @@ pub mod periodicity;
 pub mod prelude;
 mod problem;
 pub mod reduction;
+mod runtime_sized;
 pub mod sampling;
 mod scalar;
 mod scheme;

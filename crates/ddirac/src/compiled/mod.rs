@@ -6,6 +6,7 @@
 mod cache;
 mod cost;
 mod derivative;
+mod error;
 mod executable;
 pub(crate) mod graph;
 mod interpreter;
@@ -19,12 +20,13 @@ pub mod trace;
 pub use cache::native_compilations;
 pub use cost::CompileCost;
 pub use derivative::{pair_programs, pair_programs_with_runtime_inputs, PairPrograms};
+pub use error::CompileError;
 pub use interpreter::Interpreter;
 #[cfg(feature = "jit")]
 pub use jit::{JitError, NativeProgram};
 pub(crate) use linear_step::{known_not_affine, remember_not_affine};
 pub use linear_step::{LinearSolution, LinearStep, Refusal};
-pub use pair::{CompileError, CompiledPair};
+pub use pair::CompiledPair;
 pub use program::{Binary, Instruction, MalformedProgram, Program, Register, Unary};
 pub use trace::{NotCompiled, Traced};
 

@@ -6,73 +6,9 @@
 //! so that the Lagrangian of a chart, L ∘ Tφ, is differentiated (and traced) as the Lagrangian is.
 
 use super::compile::closest;
+use super::spec::{ChartPart, ChartSpec};
 use super::{CompiledExpression, ExpressionError, ExpressionSpec, Origin, Scope, CONSTANTS, FUNCTIONS};
 use crate::Coordinate;
-
-/// A chart of a text system's atlas, as a spec gives it.
-///
-/// ```
-/// use ddirac::expression::{ChartSpec, ExpressionSpec};
-/// use ddirac::{Coordinate, System};
-/// // A planar pendulum with a chart of its own: ψ = θ + 1.
-/// let spec = ExpressionSpec {
-///     coordinates: vec![Coordinate::shape("theta").angle()],
-///     lagrangian: "0.5*theta_dot^2 + cos(theta)".into(),
-///     quality: Some("1".into()),
-///     charts: vec![ChartSpec {
-///         name: "shifted".into(),
-///         coordinates: vec![Coordinate::shape("psi").angle()],
-///         to_main: vec![("theta".into(), "psi - 1".into())],
-///         from_main: vec![("psi".into(), "theta + 1".into())],
-///         quality: "1".into(),
-///     }],
-///     ..ExpressionSpec::default()
-/// };
-/// let system = ddirac::expression::ExpressionSystem::<1>::new(&spec).unwrap();
-/// assert_eq!(system.charts()[0].name, "shifted");
-/// assert_eq!(system.main_to_chart(1, &[0.5]), [1.5]);
-/// ```
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct ChartSpec {
-    /// A name for messages.
-    pub name: String,
-    /// The chart's coordinates, in order, with their roles (group coordinates are translated by the
-    /// same symmetry as the main chart's) and kinds.
-    pub coordinates: Vec<Coordinate>,
-    /// The main chart's coordinates, name → expression in this chart's coordinates and the
-    /// parameters (the map φ to the main chart).
-    pub to_main: Vec<(String, String)>,
-    /// This chart's coordinates, name → expression in the main chart's coordinates and the
-    /// parameters (the map ψ = φ⁻¹ from it).
-    pub from_main: Vec<(String, String)>,
-    /// Where the chart is good: an expression in its coordinates and the parameters, about 1 where
-    /// the chart is regular, falling to 0 at its singular set.
-    pub quality: String,
-}
-
-/// Which part of a chart an expression or declaration is.
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub enum ChartPart {
-    /// The declaration of the chart's coordinate with this name.
-    Coordinate(String),
-    /// The expression of the main chart's coordinate with this name (`to_main`).
-    ToMain(String),
-    /// The expression of the chart's coordinate with this name (`from_main`).
-    FromMain(String),
-    /// The chart's measure (`quality`).
-    Quality,
-}
-
-impl std::fmt::Display for ChartPart {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            ChartPart::Coordinate(name) => write!(f, "coordinate `{name}`"),
-            ChartPart::ToMain(name) => write!(f, "`to_main.{name}`"),
-            ChartPart::FromMain(name) => write!(f, "`from_main.{name}`"),
-            ChartPart::Quality => write!(f, "`quality`"),
-        }
-    }
-}
 
 /// A compiled atlas: the main chart's measure and the other charts.
 #[derive(Debug, Clone, PartialEq)]

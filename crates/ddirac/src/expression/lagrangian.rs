@@ -6,7 +6,7 @@
 //! runtime inputs of a trace), so they give the same numbers.
 
 use super::atlas::TextAtlas;
-use super::system::{compile, exact_at, own_lagrangian, Compiled, OpenLagrangian};
+use super::compiled_spec::{compile, exact_at, own_lagrangian, Compiled, OpenLagrangian};
 use super::{CompiledExpression, ExpressionError, ExpressionSpec};
 use crate::dim::Dynamic;
 use crate::mechanics::lagrangian::{Lagrangian, SystemIn};

@@ -61,17 +61,19 @@ mod ast;
 mod atlas;
 mod compile;
 mod compiled_expression;
+mod compiled_spec;
 mod definitions;
+mod erased;
 mod error;
 mod functions;
 mod lagrangian;
 mod lexer;
 mod parser;
 mod scope;
+mod spec;
 mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
-pub use atlas::{ChartPart, ChartSpec};
 pub use compiled_expression::CompiledExpression;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use functions::{CONSTANTS, FUNCTIONS};
@@ -79,7 +81,8 @@ pub use lagrangian::ExpressionLagrangian;
 pub use lexer::{tokenize, Token, TokenKind};
 pub use parser::{parse, MAX_DEPTH};
 pub use scope::Scope;
-pub use system::{ExpressionSpec, ExpressionSystem};
+pub use spec::{ChartPart, ChartSpec, ExpressionSpec};
+pub use system::ExpressionSystem;
 
 /// A byte range `start..end` in a source text.
 ///

@@ -15,6 +15,7 @@ mod atlas;
 mod chart_watch;
 mod progress;
 mod resolution;
+mod row;
 mod stages;
 mod state;
 
@@ -37,10 +38,11 @@ pub use chart_watch::{KICK, LEGENDRE_DROP, MAX_ANGLE_STEP};
 pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
 pub use resolution::LOOSE_TOLERANCE_MARGIN;
+pub use row::{OwnedRow, OwnedRowIn, StepReport};
 use stages::Stages;
 pub use stages::MAX_SUBDIVISION;
 use state::Memory;
-pub use state::{OwnedRow, OwnedRowIn, State, StateIn, StepReport};
+pub use state::{State, StateIn};
 
 /// How many steps a run takes between two calls of its watch ([`crate::integrate_watched`],
 /// `run_to_end`): a call every 64 steps costs nothing measurable, and 64 of the slowest steps the engine

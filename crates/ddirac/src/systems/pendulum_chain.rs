@@ -32,7 +32,7 @@ use num_dual::DualNum;
 
 use crate::dim::Dynamic;
 use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
-use crate::sizes::RuntimeSized;
+use crate::runtime_sized::RuntimeSized;
 use crate::{Coordinate, DynSystem, Erased, ErasedDynamic, Error, InitialMomentum, Input, Problem, Scalar, System};
 
 /// A planar chain of `N` identical pendula (uniform mass and length) hanging from a fixed pivot.
