@@ -2,6 +2,7 @@
 //! the published numbers it must reproduce. Tests, benchmarks and the command line use the same
 //! modules; [`BUILT_IN`] lists them by name for type-erased use.
 
+mod built_in_chain;
 mod charged_particle;
 mod double_spherical_pendulum;
 mod heavy_top;
@@ -10,11 +11,12 @@ mod pendulum_chain;
 mod spherical_pendulum;
 mod two_body;
 
+pub use built_in_chain::CHAIN_LINKS;
 pub use charged_particle::{ChargedParticle, TABLE_1};
 pub use double_spherical_pendulum::DoubleSphericalPendulum;
 pub use heavy_top::HeavyTop;
 pub use kepler::Kepler;
-pub use pendulum_chain::{DynamicPendulumChain, PendulumChain, CHAIN_LINKS};
+pub use pendulum_chain::{DynamicPendulumChain, PendulumChain};
 pub use spherical_pendulum::SphericalPendulum;
 pub use two_body::TwoBody;
 
@@ -121,8 +123,8 @@ pub static BUILT_IN: &[BuiltIn] = &[
     BuiltIn {
         name: "pendulum_chain",
         description: "planar chain of `links` pendula under gravity, angles θ_i from the vertical; no symmetry",
-        defaults: pendulum_chain::defaults,
-        build: pendulum_chain::build,
+        defaults: built_in_chain::defaults,
+        build: built_in_chain::build,
     },
     BuiltIn {
         name: "spherical_pendulum",

@@ -25,15 +25,15 @@
 //! No rotation or translation leaves L invariant (gravity fixes the vertical, the pivot fixes the
 //! origin), so every θ_i is a shape coordinate and a reduced run is refused with
 //! [`Error::NoSymmetry`]. The built-in `pendulum_chain` takes the number of links as the parameter
-//! `links`, any positive integer: [`PendulumChain<N>`] for the counts of [`CHAIN_LINKS`] (arrays on the
-//! stack), [`DynamicPendulumChain`] for the others (a dimension chosen at run time, [`Dynamic`]).
+//! `links`, any positive integer: [`PendulumChain<N>`] for the counts of [`super::CHAIN_LINKS`] (arrays on
+//! the stack), [`DynamicPendulumChain`] for the others (a dimension chosen at run time, [`Dynamic`]);
+//! `built_in_chain.rs` builds it.
 
 use num_dual::DualNum;
 
 use crate::dim::Dynamic;
 use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
-use crate::runtime_sized::RuntimeSized;
-use crate::{Coordinate, DynSystem, Erased, ErasedDynamic, Error, InitialMomentum, Input, Problem, Scalar, System};
+use crate::{Coordinate, DynSystem, ErasedDynamic, Error, InitialMomentum, Input, Problem, Scalar, System};
 
 /// A planar chain of `N` identical pendula (uniform mass and length) hanging from a fixed pivot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -218,73 +218,4 @@ impl SystemIn<Dynamic> for DynamicPendulumChain {
     fn coordinates(&self) -> Vec<Coordinate> {
         (0..self.links).map(|i| Coordinate::shape(&format!("theta{}", i + 1)).angle()).collect()
     }
-}
-
-/// The most links the built-in `pendulum_chain` takes.
-pub const MAX_LINKS: usize = 4096;
-
-/// Links of the default built-in `pendulum_chain`.
-const DEFAULT_LINKS: usize = 4;
-
-/// Instantiates the chain for each number of links of [`crate::SIZES`]: [`CHAIN_LINKS`] and the
-/// dispatch on it (other counts run as a [`DynamicPendulumChain`]).
-macro_rules! fixed_links {
-    ($($n:literal)*) => {
-        /// The numbers of links the built-in `pendulum_chain` runs with arrays on the stack (each is a
-        /// separate instance of the engine, [`PendulumChain<N>`] for that N); any other positive number
-        /// of links runs as a [`DynamicPendulumChain`].
-        ///
-        /// ```
-        /// let chain = ddirac::systems::find("pendulum_chain").unwrap();
-        /// let system = (chain.build)(&[("links".to_string(), 12.0)]).unwrap();
-        /// assert_eq!(system.coordinates()[11].name, "theta12");
-        /// let system = (chain.build)(&[("links".to_string(), 57.0)]).unwrap();
-        /// assert_eq!(system.coordinates()[56].name, "theta57");
-        /// let error = (chain.build)(&[("links".to_string(), 2.5)]).err().unwrap();
-        /// assert!(error.to_string().contains("a positive whole number"), "{error}");
-        /// ```
-        pub const CHAIN_LINKS: &[usize] = &[$($n),*];
-
-        fn build_links(links: usize, overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error> {
-            match links {
-                $($n => {
-                    let chain = super::with_overrides(PendulumChain::<$n>::default(), overrides)?;
-                    Ok(Box::new(Erased(RuntimeSized::Chain(chain))))
-                })*
-                _ => {
-                    let chain = super::with_overrides(DynamicPendulumChain::new(links), overrides)?;
-                    Ok(Box::new(ErasedDynamic(chain)))
-                }
-            }
-        }
-    };
-}
-
-crate::sizes::with_sizes!(fixed_links);
-
-fn unsupported_links(value: f64) -> Error {
-    Error::Invalid { what: Input::Parameter("links".into()), why: crate::Reason::NotANumberOfLinks { value } }
-}
-
-/// The default parameters of the built-in `pendulum_chain`, `links` first.
-pub(super) fn defaults() -> Vec<(&'static str, f64)> {
-    super::Parameters::parameters(&PendulumChain::<DEFAULT_LINKS>::default())
-}
-
-/// Builds the built-in `pendulum_chain` with `links` (default 4) links and the other overrides.
-pub(super) fn build(overrides: &[(String, f64)]) -> Result<Box<dyn DynSystem>, Error> {
-    let links = match overrides.iter().rev().find(|(name, _)| name == "links") {
-        Some((name, value)) => super::finite(name, *value)?,
-        None => DEFAULT_LINKS as f64,
-    };
-    if links.fract() != 0.0 || links < 1.0 {
-        return Err(unsupported_links(links));
-    }
-    if links > MAX_LINKS as f64 {
-        return Err(Error::Invalid {
-            what: Input::Parameter("links".into()),
-            why: crate::Reason::TooManyLinks { links, max: MAX_LINKS },
-        });
-    }
-    build_links(links as usize, overrides)
 }
