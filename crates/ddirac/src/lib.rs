@@ -20,12 +20,21 @@
 //! assert!((solution.summary.reference_error.unwrap() - 0.01664).abs() < 5e-6);
 //! ```
 #![warn(missing_docs)]
+//!
+//! The API is the crate root (with [`prelude`] for one import), the modules a system's author
+//! reaches for ([`systems`], [`expression`], [`atlas`], [`chart`], [`ensemble`], [`diagnostics`],
+//! [`mechanics`], [`reduction`], [`composition`], [`dim`], [`ad`], [`interrupt`]). The modules hidden
+//! from the documentation ([`baselines`]: the benchmarks' peers; [`compiled`]: the compiler's
+//! programs; [`newton`], [`sampling`], [`stack`]) are public for the command line, the bindings, the
+//! benchmarks and the tests, and may change without notice.
 
 pub mod ad;
 pub mod atlas;
+#[doc(hidden)]
 pub mod baselines;
 pub mod chart;
 mod check;
+#[doc(hidden)]
 pub mod compiled;
 pub mod composition;
 mod coordinate;
@@ -40,6 +49,7 @@ mod integrator;
 pub mod interrupt;
 mod linalg;
 pub mod mechanics;
+#[doc(hidden)]
 pub mod newton;
 mod padding;
 mod periodicity;
@@ -47,11 +57,13 @@ pub mod prelude;
 mod problem;
 pub mod reduction;
 mod runtime_sized;
+#[doc(hidden)]
 pub mod sampling;
 mod scalar;
 mod scheme;
 mod setup;
 mod sizes;
+#[doc(hidden)]
 pub mod stack;
 mod stepper;
 mod system;
