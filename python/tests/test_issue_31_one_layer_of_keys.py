@@ -50,6 +50,10 @@ def test_the_method_keys_are_the_spec_s_and_each_means_the_same_from_either_fron
         extra = {"order": 4} if key == "composition" else {}
         a, b = direct(**{key: value}, **extra), from_spec(**{key: value}, **extra)
         assert np.array_equal(a.q, b.q) and np.array_equal(a.p, b.p), key
+    # summary.json records every key, as the spec writes it, so that the run can be given again.
+    recorded = from_spec(jacobian="fresh").summary["method"]
+    assert set(VALUES) <= set(recorded) and recorded["jacobian"] == "fresh"
+    assert direct(reuse_jacobian=True).summary["method"]["jacobian"] == "reuse"
     # A non-default value changes the run (so that the comparison above can fail).
     assert not np.array_equal(direct(rule="trapezoid", order=4).q, direct().q)
 
