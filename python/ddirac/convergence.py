@@ -19,7 +19,7 @@ REFERENCE_FACTOR = 8
 #: Consecutive observed orders are stable when they differ by at most this fraction of the larger (as
 #: ``ddirac convergence`` judges them); a stable order within this fraction of the declared order is
 #: the declared order.
-STABLE = 0.1
+STABLE: float = _ddirac.STABLE
 
 #: The verdicts of :attr:`ConvergenceTable.verdict`.
 VERDICTS = ("as declared", "above declared", "below declared", "undetermined")
@@ -115,25 +115,11 @@ class ConvergenceTable(dict):  # type: ignore[type-arg]
         return "\n".join(lines)
 
 
-def _agree(a: Optional[float], b: Optional[float]) -> bool:
-    """Whether two observed orders agree within :data:`STABLE`."""
-    return a is not None and b is not None and a > 0 and b > 0 and abs(a - b) <= STABLE * max(a, b)
-
-
 def stability(orders: Sequence[Optional[float]]) -> Optional[tuple[int, int, float]]:
     """The finest stretch of rows whose consecutive observed orders agree within :data:`STABLE`: its
-    first and last row and the mean of its observed orders; None when there is none."""
-    def pair(i: int) -> bool:
-        return _agree(orders[i - 1], orders[i])
-
-    last = next((i for i in range(len(orders) - 1, 1, -1) if pair(i)), None)
-    if last is None:
-        return None
-    first = last - 1
-    while first >= 2 and pair(first):
-        first -= 1
-    stable = [p for p in orders[first:last + 1] if p is not None]
-    return first - 1, last, sum(stable) / len(stable)
+    first and last row and the mean of its observed orders; None when there is none. The rule of
+    ``ddirac convergence``, from the same code."""
+    return _ddirac.convergence_stability([None if p is None else float(p) for p in orders])
 
 
 def _verdict(steps: list[int], orders: list[Optional[float]], declared: int, method: str) -> tuple[
@@ -148,7 +134,7 @@ def _verdict(steps: list[int], orders: list[Optional[float]], declared: int, met
                f"within {100 * STABLE:.0f} %; the runs may be outside the asymptotic range")
         return None, None, "undetermined", f"{why}; the declared order of {method} is {declared}"
     first, last, p = found
-    if _agree(p, float(declared)):
+    if _ddirac.orders_agree(p, float(declared)):
         verdict = "as declared"
     elif p > declared:
         verdict = "above declared"

@@ -245,16 +245,23 @@ fn table(
     rows
 }
 
-/// Whether two observed orders agree within [`STABLE`].
-fn agree(a: f64, b: f64) -> bool {
+/// Whether two observed orders agree within [`STABLE`] of the larger (both positive).
+pub fn agree(a: f64, b: f64) -> bool {
     a > 0.0 && b > 0.0 && (a - b).abs() <= STABLE * a.max(b)
 }
 
 /// The finest stretch of rows over which the observed order is stable, if any.
 pub fn stability(rows: &[Row]) -> Option<Stability> {
     let orders: Vec<Option<f64>> = rows.iter().map(|r| r.order).collect();
+    stability_of(&orders)
+}
+
+/// The finest stretch of rows whose consecutive observed orders `orders` (one per row, `None` for the
+/// first) agree within [`STABLE`]: the rule of `ddirac convergence` and of the Python package's
+/// `ddirac.convergence`.
+pub fn stability_of(orders: &[Option<f64>]) -> Option<Stability> {
     let pair = |i: usize| matches!((orders[i - 1], orders[i]), (Some(a), Some(b)) if agree(a, b));
-    let last = (2..rows.len()).rev().find(|&i| pair(i))?;
+    let last = (2..orders.len()).rev().find(|&i| pair(i))?;
     let mut first = last - 1;
     while first >= 2 && pair(first) {
         first -= 1;

@@ -31,6 +31,9 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::method_keys, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::time_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::convergence_stability, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::orders_agree, m)?)?;
+    m.add("STABLE", ddirac_cli::convergence::STABLE)?;
     m.add_function(wrap_pyfunction!(ensemble::ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(ensemble::ensemble_members, m)?)?;
     m.add_function(wrap_pyfunction!(overhead::rust_seconds, m)?)?;

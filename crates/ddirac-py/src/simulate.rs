@@ -124,6 +124,20 @@ pub fn time_grid(step: Option<f64>, steps: Option<i64>, duration: Option<f64>) -
     keys::time::grid(&TimeKeys { step, steps, duration }, Spelling::Argument).map_err(text)
 }
 
+/// The finest stretch of a convergence table's rows whose consecutive observed orders agree within
+/// `STABLE` (10 %), as (first row, last row, mean order): the rule of `ddirac convergence`.
+#[pyfunction]
+pub fn convergence_stability(orders: Vec<Option<f64>>) -> Option<(usize, usize, f64)> {
+    ddirac_cli::convergence::stability_of(&orders).map(|s| (s.rows.0, s.rows.1, s.order))
+}
+
+/// Whether two orders agree within `STABLE` of the larger (both positive): the rule of `ddirac
+/// convergence`.
+#[pyfunction]
+pub fn orders_agree(a: f64, b: f64) -> bool {
+    ddirac_cli::convergence::agree(a, b)
+}
+
 /// The names of the method keys, in the order of a spec's `[method]` table.
 #[pyfunction]
 pub fn method_keys() -> Vec<&'static str> {
