@@ -44,7 +44,7 @@ pub trait DynSystem: Send + Sync {
     /// Checks a problem without integrating; see [`crate::check`].
     fn check(&self, problem: &Problem, method: &Method) -> Result<CheckReport, Error>;
 
-    /// A stepper for a problem; see [`Stepper::new`].
+    /// A stepper for a problem; see [`Stepper::new`](crate::StepperIn::new).
     fn stepper<'a>(&'a self, problem: &Problem, method: &Method) -> Result<Box<dyn DynStepper + 'a>, Error>;
 
     /// The exact motion from (q0, p0) at time t on the coordinates it is known for; see
@@ -180,14 +180,14 @@ pub trait DynStepper {
     /// Whether all N steps are taken.
     fn is_finished(&self) -> bool;
 
-    /// Report angles wrapped to (−π, π]; see [`Stepper::set_wrap_angles`].
+    /// Report angles wrapped to (−π, π]; see [`Stepper::set_wrap_angles`](crate::StepperIn::set_wrap_angles).
     fn set_wrap_angles(&mut self, wrap: bool);
 
-    /// Takes step k → k + 1; see [`Stepper::step`].
+    /// Takes step k → k + 1; see [`Stepper::step`](crate::StepperIn::step).
     fn step(&mut self) -> Result<StepReport, Error>;
 
     /// Steps to the end, reporting every `every`-th row and the last to `observer` and calling
-    /// `watch` every [`crate::WATCH_STEPS`] steps; see [`Stepper::run_to_end`]. After an error the
+    /// `watch` every [`crate::WATCH_STEPS`] steps; see [`Stepper::run_to_end`](crate::StepperIn::run_to_end). After an error the
     /// stepper stays at the step that failed.
     fn run_to_end(
         &mut self,
@@ -196,24 +196,24 @@ pub trait DynStepper {
         watch: &mut dyn FnMut(usize) -> Result<(), OutputError>,
     ) -> Result<(), Error>;
 
-    /// The row of the current step; see [`Stepper::row`].
+    /// The row of the current step; see [`Stepper::row`](crate::StepperIn::row).
     fn row(&mut self) -> DynRow;
 
-    /// The state of the current step; see [`Stepper::state`].
+    /// The state of the current step; see [`Stepper::state`](crate::StepperIn::state).
     fn state(&self) -> DynState;
 
-    /// Continues from a state; see [`Stepper::restart`]. An error for a state of another number of
+    /// Continues from a state; see [`Stepper::restart`](crate::StepperIn::restart). An error for a state of another number of
     /// coordinates.
     fn restart(&mut self, state: &DynState) -> Result<(), Error>;
 
-    /// The summary of the run; see [`Stepper::finish`].
+    /// The summary of the run; see [`Stepper::finish`](crate::StepperIn::finish).
     fn finish(self: Box<Self>) -> Result<Summary, Error>;
 
-    /// The summary of the run, keeping the stepper; see [`Stepper::summary`].
+    /// The summary of the run, keeping the stepper; see [`Stepper::summary`](crate::StepperIn::summary).
     fn summary(&mut self) -> Result<Summary, Error>;
 
     /// Prepares the stepper for another problem, keeping its derivatives when they serve it
-    /// unchanged; see [`Stepper::renew`].
+    /// unchanged; see [`Stepper::renew`](crate::StepperIn::renew).
     fn renew(&mut self, problem: &Problem) -> Result<bool, Error>;
 }
 
@@ -298,12 +298,12 @@ pub struct DynState {
 }
 
 impl DynState {
-    /// A cold state at step `k` from a configuration `q` and canonical momenta `p`; see [`State::new`].
+    /// A cold state at step `k` from a configuration `q` and canonical momenta `p`; see [`State::new`](crate::StateIn::new).
     pub fn new(k: usize, q: Vec<f64>, p: Vec<f64>) -> Self {
         Self { k, q, p, typed: None }
     }
 
-    /// This state without the stepper's memory; see [`State::cold`].
+    /// This state without the stepper's memory; see [`State::cold`](crate::StateIn::cold).
     pub fn cold(&self) -> Self {
         Self::new(self.k, self.q.clone(), self.p.clone())
     }

@@ -37,7 +37,7 @@ pub fn integrate<S: SystemIn<Dm>, Dm: Dim>(
     integrate_watched(system, problem, method, output, observer, &mut |_| Ok(()))
 }
 
-/// [`integrate`], calling `watch(k)` before step k every [`WATCH_STEPS`] steps (and before the
+/// [`integrate`], calling `watch(k)` before step k every [`WATCH_STEPS`](crate::WATCH_STEPS) steps (and before the
 /// first): a caller that must look at something while a run goes on (Python's signal handlers) does
 /// it there; an error from it stops the run with [`Error::Output`] as an observer's does.
 ///

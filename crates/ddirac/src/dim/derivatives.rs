@@ -49,7 +49,7 @@ impl<const N: usize> Copy for FirstDerivatives<Fixed<N>> {}
 
 /// Value, ∂f/∂a, ∂f/∂b and ∂²f/∂a∂b at (a, b): for [`Fixed`] dimensions in one pass up to
 /// [`CROSSOVER`] arguments and in column chunks above ([`mixed_single_pass`], [`mixed_chunked`]);
-/// for [`Dynamic`](crate::dim::Dynamic) ones in blocks of [`BLOCK`] × [`BLOCK`] entries ([`mixed_blocks`]). Each entry is
+/// for [`Dynamic`](crate::dim::Dynamic) ones in blocks of [`BLOCK`](super::BLOCK) × [`BLOCK`](super::BLOCK) entries ([`mixed_blocks`](super::mixed_blocks)). Each entry is
 /// the same arithmetic in every case, so all give the same numbers.
 ///
 /// ```
@@ -77,7 +77,7 @@ pub fn mixed<Dm: Dim, F: PairFunction<Dm>>(
 }
 
 /// Value, ∂f/∂a and ∂f/∂b at (a, b): for [`Fixed`] dimensions in one pass, for [`Dynamic`](crate::dim::Dynamic) ones in
-/// blocks of [`BLOCK`] arguments of each ([`first_blocks`]).
+/// blocks of [`BLOCK`](super::BLOCK) arguments of each ([`first_blocks`](super::first_blocks)).
 ///
 /// ```
 /// use ddirac::dim::{first, PairFunction};

@@ -34,7 +34,7 @@ impl ExpressionSpec {
 
     /// [`ExpressionSpec::into_dyn`] in the engine of `size` coordinates, one of [`crate::SIZES`] and
     /// at least the spec's count; the coordinates beyond the spec's are padding
-    /// ([`crate::padding`]). For comparing a padded run with an unpadded one, and for measuring what
+    /// (the module `padding`). For comparing a padded run with an unpadded one, and for measuring what
     /// a larger engine costs.
     ///
     /// ```

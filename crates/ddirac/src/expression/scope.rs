@@ -12,7 +12,7 @@ pub(super) enum Entry {
 }
 
 /// The names an expression may use: variables (in the order of the values given to
-/// [`CompiledExpression::eval`]), constants, definitions and names reserved with a reason.
+/// [`CompiledExpression::eval`](super::CompiledExpression::eval)), constants, definitions and names reserved with a reason.
 ///
 /// Names should be distinct; when one is declared twice, the later declaration wins (the variable
 /// count still includes every variable declared).

@@ -21,15 +21,15 @@ use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split};
 /// the chart.
 const DOMAIN_TOLERANCE: f64 = 1e-6;
 
-/// A run of a [`Problem`] for a [`System`] with a [`Method`], one step at a time.
+/// A run of a [`Problem`] for a [`System`](crate::System) with a [`Method`], one step at a time.
 ///
-/// [`Stepper::new`] does what a run does before its first step: it checks the input and the
+/// [`Stepper::new`](crate::StepperIn::new) does what a run does before its first step: it checks the input and the
 /// hypotheses of the method ([`crate::check`]), chooses the unreduced or the reduced equations and
-/// prepares their derivatives. Then [`Stepper::step`] advances from step k to k + 1,
-/// [`Stepper::row`] reports the current state, and [`Stepper::finish`] gives the run's summary.
-/// [`Stepper::state`] saves the state of step k with everything that influences later steps (the
+/// prepares their derivatives. Then [`Stepper::step`](crate::StepperIn::step) advances from step k to k + 1,
+/// [`Stepper::row`](crate::StepperIn::row) reports the current state, and [`Stepper::finish`](crate::StepperIn::finish) gives the run's summary.
+/// [`Stepper::state`](crate::StepperIn::state) saves the state of step k with everything that influences later steps (the
 /// predictor's memory, the kept Newton Jacobian, the energy watch) and the run's record so far;
-/// [`Stepper::restart`] continues from it bit for bit. [`State::new`] gives a cold state from q and p
+/// [`Stepper::restart`](crate::StepperIn::restart) continues from it bit for bit. [`State::new`](crate::StateIn::new) gives a cold state from q and p
 /// alone, for starting a prepared stepper from other initial data (an ensemble).
 ///
 /// ```
@@ -142,7 +142,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         self.charts[self.current].as_mut().expect("the current chart has a stepper")
     }
 
-    /// Report angles wrapped to (−π, π] (in [`Stepper::row`] and the summary's final q) instead of
+    /// Report angles wrapped to (−π, π] (in [`Stepper::row`](crate::StepperIn::row) and the summary's final q) instead of
     /// continuous; the default is continuous.
     pub fn set_wrap_angles(&mut self, wrap: bool) {
         self.wrap_angles = wrap;
@@ -405,9 +405,9 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
 
     /// Steps to the end, handing the rows of every `every`-th step and of the last to `observer`
     /// (what [`crate::integrate`] reports), each with the discrete energy of its step. The same
-    /// steps and rows as [`Stepper::step`] and [`Stepper::row`]. `watch` is called with k every
+    /// steps and rows as [`Stepper::step`](crate::StepperIn::step) and [`Stepper::row`](crate::StepperIn::row). `watch` is called with k every
     /// [`crate::WATCH_STEPS`] steps (from k = 0). After an error the stepper stays at the step that
-    /// failed, as after [`Stepper::step`].
+    /// failed, as after [`Stepper::step`](crate::StepperIn::step).
     pub fn run_to_end(
         &mut self,
         every: usize,
@@ -466,14 +466,14 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     /// Continues from `state`: from a state taken from a stepper of the same system, method and step
     /// exactly as that stepper would have continued (its record too, so that the summary covers the
     /// whole run); from a cold state as on a first step from (q, p), with a new record (and, with an
-    /// atlas, in the best chart there). The derivatives prepared by [`Stepper::new`] are kept. A
+    /// atlas, in the best chart there). The derivatives prepared by [`Stepper::new`](crate::StepperIn::new) are kept. A
     /// compiled closed-form step holds the conserved momenta μ of the problem as constants: from a
     /// state with another μ the steps are solved by Newton's method on the same equations instead.
     ///
     /// An error for a state beyond the problem's last step, a warm state from another method or
-    /// step (restart from its [`State::cold`] form instead), or a cold state with a non-finite
+    /// step (restart from its [`State::cold`](crate::StateIn::cold) form instead), or a cold state with a non-finite
     /// entry or, for a degenerate Lagrangian, with p off the primary constraint p = ∂L/∂v. The other
-    /// hypotheses [`Stepper::new`] tested near the problem's initial data (invariance, periodicity)
+    /// hypotheses [`Stepper::new`](crate::StepperIn::new) tested near the problem's initial data (invariance, periodicity)
     /// are not tested again for a cold state.
     pub fn restart(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
         crate::stack::enough(self.dim, || self.restart_here(state))
@@ -501,14 +501,14 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         Ok(())
     }
 
-    /// Prepares this stepper for `problem` as [`Stepper::new`] prepares a new stepper of the same
+    /// Prepares this stepper for `problem` as [`Stepper::new`](crate::StepperIn::new) prepares a new stepper of the same
     /// system and method, keeping the derivatives when they serve the problem unchanged (an
     /// ensemble's members that differ in initial data trace and compile once): `Ok(true)` then, and
     /// the run that follows is that of a new stepper, bit for bit. `Ok(false)` when a new stepper
     /// might differ — another step size or number of steps, a compiled closed-form step (it holds the
     /// first step's conserved momenta), a trace with guards, compiled programs that fail their check
     /// against dual numbers at the new first step, dual numbers chosen at the first step — and the
-    /// caller makes a new stepper. An error is the one [`Stepper::new`] gives for `problem` (its input
+    /// caller makes a new stepper. An error is the one [`Stepper::new`](crate::StepperIn::new) gives for `problem` (its input
     /// and the check of the method's hypotheses near its initial data are tested anew). The main
     /// chart's derivatives are what is kept; the other charts are prepared anew when entered.
     pub fn renew(&mut self, problem: &Problem) -> Result<bool, Error> {
@@ -538,7 +538,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         self.summary()
     }
 
-    /// What [`Stepper::finish`] gives, leaving the stepper to be renewed ([`Stepper::renew`]) or
+    /// What [`Stepper::finish`](crate::StepperIn::finish) gives, leaving the stepper to be renewed ([`Stepper::renew`](crate::StepperIn::renew)) or
     /// restarted.
     pub fn summary(&mut self) -> Result<Summary, Error> {
         crate::stack::enough(self.dim, || self.summary_here())

@@ -173,7 +173,7 @@ impl DynamicPendulumChain {
     }
 
     /// The chain as a type-erased system ([`ErasedDynamic`]), the engine the built-in
-    /// `pendulum_chain` runs for a number of links outside [`CHAIN_LINKS`]: for comparing the two
+    /// `pendulum_chain` runs for a number of links outside [`CHAIN_LINKS`](super::CHAIN_LINKS): for comparing the two
     /// dimensions at the same number of links.
     pub fn erased(self) -> Box<dyn DynSystem> {
         Box::new(ErasedDynamic(self))
