@@ -9,6 +9,7 @@
 
 mod blocks;
 mod derivatives;
+mod widths;
 
 pub use blocks::{first_blocks, mixed_blocks, BLOCK};
 pub use derivatives::{
@@ -18,6 +19,7 @@ pub use derivatives::{
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::fmt::Debug;
 use std::ops::{Index, IndexMut, SubAssign};
+pub use widths::WIDEST;
 
 /// What an entry of a [`Dim::Array`] must be.
 pub trait Entry: Clone + Debug + PartialEq + Send + Sync + 'static {}
@@ -227,7 +229,8 @@ impl Dim for Dynamic {
     }
 
     fn mixed<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> MixedDerivatives<Self> {
-        mixed_blocks(self, f, a, b)
+        let kernel = widths::by_width!(self.0, W => widths::mixed_width::<F, W>(f, a, b), _ => None);
+        kernel.unwrap_or_else(|| mixed_blocks(self, f, a, b))
     }
 
     fn scratch<R>(self, f: impl FnOnce(&mut [f64]) -> R) -> R {
@@ -235,7 +238,8 @@ impl Dim for Dynamic {
     }
 
     fn first<F: PairFunction<Self>>(self, f: &F, a: &Vec<f64>, b: &Vec<f64>) -> FirstDerivatives<Self> {
-        first_blocks(self, f, a, b)
+        let kernel = widths::by_width!(self.0, W => widths::first_width::<F, W>(f, a, b), _ => None);
+        kernel.unwrap_or_else(|| first_blocks(self, f, a, b))
     }
 }
 

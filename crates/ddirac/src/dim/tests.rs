@@ -115,32 +115,59 @@ fn same_bits(x: &[f64], y: &[f64]) -> bool {
     x.len() == y.len() && x.iter().zip(y).all(|(a, b)| a.to_bits() == b.to_bits())
 }
 
-fn blocks_equal_fixed<const N: usize>() {
+fn assert_bits_equal<const N: usize>(
+    fixed: &MixedDerivatives<Fixed<N>>,
+    dynamic: &MixedDerivatives<Dynamic>,
+    how: &str,
+) {
+    assert_eq!(fixed.value.to_bits(), dynamic.value.to_bits(), "n = {N}, {how}");
+    assert!(same_bits(fixed.da.as_slice(), dynamic.da.as_slice()), "n = {N}, {how}: ∂f/∂a");
+    assert!(same_bits(fixed.db.as_slice(), dynamic.db.as_slice()), "n = {N}, {how}: ∂f/∂b");
+    assert!(same_bits(fixed.dadb.as_slice(), dynamic.dadb.as_slice()), "n = {N}, {how}: ∂²f/∂a∂b");
+}
+
+/// A dynamic dimension's derivatives (kernels as wide as n up to [`WIDEST`], blocks above) and
+/// blocks at every n, against the fixed dimension's, bit for bit.
+fn dynamic_equals_fixed<const N: usize>() {
     let a: [f64; N] = std::array::from_fn(|i| 0.1 * i as f64 - 0.4);
     let b: [f64; N] = std::array::from_fn(|i| 0.3 - 0.05 * i as f64);
+    let (av, bv) = (a.to_vec(), b.to_vec());
     let fixed = mixed(Fixed, &Coupled, &a, &b);
-    let dynamic = mixed(Dynamic(N), &Coupled, &a.to_vec(), &b.to_vec());
-    assert_eq!(fixed.value.to_bits(), dynamic.value.to_bits(), "n = {N}");
-    assert!(same_bits(fixed.da.as_slice(), dynamic.da.as_slice()), "n = {N}: ∂f/∂a");
-    assert!(same_bits(fixed.db.as_slice(), dynamic.db.as_slice()), "n = {N}: ∂f/∂b");
-    assert!(same_bits(fixed.dadb.as_slice(), dynamic.dadb.as_slice()), "n = {N}: ∂²f/∂a∂b");
-    let (fixed, dynamic) = (first(Fixed, &Coupled, &a, &b), first(Dynamic(N), &Coupled, &a.to_vec(), &b.to_vec()));
-    assert_eq!(fixed.value.to_bits(), dynamic.value.to_bits(), "n = {N}");
-    assert!(same_bits(fixed.da.as_slice(), dynamic.da.as_slice()), "n = {N}: first ∂f/∂a");
-    assert!(same_bits(fixed.db.as_slice(), dynamic.db.as_slice()), "n = {N}: first ∂f/∂b");
+    assert_bits_equal(&fixed, &mixed(Dynamic(N), &Coupled, &av, &bv), "as the dimension takes them");
+    assert_bits_equal(&fixed, &mixed_blocks(Dynamic(N), &Coupled, &av, &bv), "blocks");
+    let (fixed, dynamic) = (first(Fixed, &Coupled, &a, &b), first(Dynamic(N), &Coupled, &av, &bv));
+    let blocks = first_blocks(Dynamic(N), &Coupled, &av, &bv);
+    for d in [&dynamic, &blocks] {
+        assert_eq!(fixed.value.to_bits(), d.value.to_bits(), "n = {N}");
+        assert!(same_bits(fixed.da.as_slice(), d.da.as_slice()), "n = {N}: first ∂f/∂a");
+        assert!(same_bits(fixed.db.as_slice(), d.db.as_slice()), "n = {N}: first ∂f/∂b");
+    }
 }
 
 #[test]
-fn blocks_in_a_dynamic_dimension_equal_a_fixed_one_bit_for_bit() {
-    // One block, a single pass of the fixed dimension; several blocks against column chunks, with a
-    // partial last block.
-    blocks_equal_fixed::<1>();
-    blocks_equal_fixed::<BLOCK>();
-    blocks_equal_fixed::<11>();
-    blocks_equal_fixed::<21>();
+fn a_dynamic_dimension_equals_a_fixed_one_bit_for_bit() {
+    // Kernels of one pass and of column chunks (13, 16: above CROSSOVER, a partial last chunk at 13);
+    // blocks: one block, a full block, several with a partial last one, and above WIDEST.
+    dynamic_equals_fixed::<1>();
+    dynamic_equals_fixed::<4>();
+    dynamic_equals_fixed::<BLOCK>();
+    dynamic_equals_fixed::<11>();
+    dynamic_equals_fixed::<12>();
+    dynamic_equals_fixed::<13>();
+    dynamic_equals_fixed::<WIDEST>();
+    dynamic_equals_fixed::<21>();
     let a: [f64; 21] = std::array::from_fn(|i| 0.1 * i as f64 - 0.4);
     let b: [f64; 21] = std::array::from_fn(|i| 0.3 - 0.05 * i as f64);
     assert_same(&mixed(Fixed, &Coupled, &a, &b), &reference(&Coupled, &a, &b));
+}
+
+#[test]
+fn a_width_kernel_refuses_arguments_of_another_length() {
+    let (a, b) = (vec![0.1, 0.2, 0.3], vec![0.4, 0.5, 0.6]);
+    assert!(widths::mixed_width::<Coupled, 2>(&Coupled, &a, &b).is_none());
+    assert!(widths::first_width::<Coupled, 4>(&Coupled, &a, &b).is_none());
+    assert!(widths::mixed_width::<Coupled, 3>(&Coupled, &a, &b[..2]).is_none());
+    assert!(widths::mixed_width::<Coupled, 3>(&Coupled, &a, &b).is_some());
 }
 
 #[test]
