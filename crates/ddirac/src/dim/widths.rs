@@ -7,7 +7,7 @@
 //! the mixed entries it needs (64 per pass instead of 16): the width is what a dimension chosen at
 //! run time must not give away at small n, and the kernels are all that is instantiated per width.
 
-use super::{Dynamic, FirstDerivatives, MixedDerivatives, PairFunction, CHUNK, CROSSOVER};
+use super::{Dim, Dynamic, FirstDerivatives, MixedDerivatives, PairFunction, CHUNK, CROSSOVER};
 use crate::ad::{Gradient, Mixed};
 use nalgebra::{DMatrix, DVector};
 
@@ -49,9 +49,9 @@ pub(super) fn mixed_width<F: PairFunction<Dynamic>, const W: usize>(
         let r = f.eval::<Mixed<W, W>>(&x.to_vec(), &y.to_vec());
         return Some(MixedDerivatives {
             value: r.re,
-            da: DVector::from_column_slice(&r.a),
-            db: DVector::from_column_slice(&r.b),
-            dadb: DMatrix::from_fn(W, W, |i, j| r.ab[i][j]),
+            da: DVector::from_vec(r.a.to_vec()),
+            db: DVector::from_vec(r.b.to_vec()),
+            dadb: Dynamic(W).matrix(|i, j| r.ab[i][j]),
         });
     }
     let (mut value, mut da) = (0.0, DVector::<f64>::zeros(W));
@@ -61,7 +61,7 @@ pub(super) fn mixed_width<F: PairFunction<Dynamic>, const W: usize>(
         let r: Mixed<W, CHUNK> = f.eval::<Mixed<W, CHUNK>>(&x.to_vec(), &y.to_vec());
         if start == 0 {
             value = r.re;
-            da = DVector::from_column_slice(&r.a);
+            da = DVector::from_vec(r.a.to_vec());
         }
         for c in 0..CHUNK.min(W - start) {
             db[start + c] = r.b[c];
@@ -82,5 +82,5 @@ pub(super) fn first_width<F: PairFunction<Dynamic>, const W: usize>(
     let (a, b) = (exactly::<W>(a)?, exactly::<W>(b)?);
     let (x, y) = Gradient::<W, W>::seed(a, b);
     let r = f.eval::<Gradient<W, W>>(&x.to_vec(), &y.to_vec());
-    Some(FirstDerivatives { value: r.re, da: DVector::from_column_slice(&r.a), db: DVector::from_column_slice(&r.b) })
+    Some(FirstDerivatives { value: r.re, da: DVector::from_vec(r.a.to_vec()), db: DVector::from_vec(r.b.to_vec()) })
 }
