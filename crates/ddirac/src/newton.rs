@@ -151,9 +151,42 @@ pub fn solve<V: Column>(
 /// The factorized Jacobian a chord solve leaves for the next one, with how well it served.
 #[derive(Debug, Clone)]
 pub struct KeptJacobian<Dm: Dim> {
+    /// The storage of the factorization, once there is one.
     lu: Option<Factorization<Dm>>,
+    /// Whether `lu` holds the factorized Jacobian of the last solve (else only storage to reuse).
+    usable: bool,
     corrections: usize,
     relative_cost: usize,
+    /// The vectors of a solve, kept so that a solve in a dimension of the heap allocates nothing.
+    work: Option<Work<Dm>>,
+}
+
+/// The vectors a chord solve works in.
+#[derive(Debug, Clone)]
+struct Work<Dm: Dim> {
+    /// The correction δz.
+    delta: Dm::Vector,
+    /// z before the correction, to undo it.
+    previous: Dm::Vector,
+    /// The substitutions' scratch.
+    y: Dm::Array<f64>,
+}
+
+impl<Dm: Dim> Work<Dm> {
+    fn new(dim: Dm) -> Self {
+        Self { delta: dim.zeros(), previous: dim.zeros(), y: dim.array(|_| 0.0) }
+    }
+}
+
+/// `to` = `from`, entry by entry (no allocation).
+fn copy<Dm: Dim>(dim: Dm, from: &Dm::Vector, to: &mut Dm::Vector) {
+    if Dm::ON_STACK {
+        to.clone_from(from);
+    } else {
+        for i in 0..dim.n() {
+            to[i] = from[i];
+        }
+    }
 }
 
 /// The cost of a Jacobian in residuals when both come from dual numbers for `n` unknowns, estimated
@@ -189,7 +222,23 @@ impl<Dm: Dim> KeptJacobian<Dm> {
     /// Nothing kept yet; a Jacobian with its factorization costs `relative_cost` residuals with their
     /// solve.
     pub fn with_relative_cost(relative_cost: usize) -> Self {
-        Self { lu: None, corrections: 0, relative_cost }
+        Self { lu: None, usable: false, corrections: 0, relative_cost, work: None }
+    }
+
+    /// Factorizes the Jacobian `j` of `dim` unknowns into the storage kept (allocated the first time).
+    fn factorize(&mut self, dim: Dm, j: &Dm::Matrix) {
+        self.usable = match &mut self.lu {
+            Some(lu) => lu.refactor(j, 1e-14),
+            None => {
+                self.lu = Factorization::new(dim, j, 1e-14);
+                self.lu.is_some()
+            }
+        };
+    }
+
+    /// The factorized Jacobian, if one is held.
+    fn current(&self) -> Option<&Factorization<Dm>> {
+        self.lu.as_ref().filter(|_| self.usable)
     }
 
     /// Whether a Jacobian is kept from one solve to the next at all: when it costs at least
@@ -250,15 +299,22 @@ pub(crate) fn solve_in<Dm: Dim>(
     kept: &mut KeptJacobian<Dm>,
     eval: impl FnMut(&Dm::Vector, bool) -> (Dm::Vector, Option<Dm::Matrix>),
 ) -> Result<NewtonStats, NewtonFailure> {
-    let reuse =
-        options.reuse_jacobian && kept.across_solves() && kept.lu.is_some() && kept.corrections <= kept.budget();
+    let reuse = options.reuse_jacobian && kept.across_solves() && kept.usable && kept.corrections <= kept.budget();
     if !reuse {
-        kept.lu = None;
+        kept.usable = false;
     }
-    let result = chord(dim, z, residual_scale, options, &mut kept.lu, eval);
+    // The stack's vectors are the solve's own (kept in registers); the heap's are kept for the next.
+    let mut work = match kept.work.take() {
+        Some(work) if !Dm::ON_STACK => work,
+        _ => Work::new(dim),
+    };
+    let result = chord(dim, z, residual_scale, options, kept, &mut work, eval);
+    if !Dm::ON_STACK {
+        kept.work = Some(work);
+    }
     match &result {
         Ok(stats) => kept.corrections = stats.iterations,
-        Err(_) => kept.lu = None,
+        Err(_) => kept.usable = false,
     }
     result
 }
@@ -268,11 +324,12 @@ fn chord<Dm: Dim>(
     z: &mut Dm::Vector,
     residual_scale: f64,
     options: &NewtonOptions,
-    kept: &mut Option<Factorization<Dm>>,
+    kept: &mut KeptJacobian<Dm>,
+    work: &mut Work<Dm>,
     mut eval: impl FnMut(&Dm::Vector, bool) -> (Dm::Vector, Option<Dm::Matrix>),
 ) -> Result<NewtonStats, NewtonFailure> {
     let (mut iterations, mut jacobians) = (0, 0);
-    let mut evaluate = |kept: &mut Option<Factorization<Dm>>, z: &Dm::Vector, with_jacobian: bool, iterations| {
+    let mut evaluate = |kept: &mut KeptJacobian<Dm>, z: &Dm::Vector, with_jacobian: bool, iterations| {
         let (r, jac) = eval(z, with_jacobian);
         let residual = Dm::amax(&r);
         let finite =
@@ -282,14 +339,14 @@ fn chord<Dm: Dim>(
             return Err(NewtonFailure { reason: FailureReason::NonFinite, iterations, residual });
         }
         if let Some(j) = jac {
-            *kept = Factorization::new(dim, &j, 1e-14);
+            kept.factorize(dim, &j);
         }
         Ok((r, residual))
     };
-    let mut fresh = kept.is_none();
+    let mut fresh = kept.current().is_none();
     let (mut r, mut residual) = evaluate(kept, z, fresh, iterations)?;
     jacobians += usize::from(fresh);
-    let threshold = options.threshold_at(residual_scale, kept.as_ref().map(Factorization::scale), Dm::amax(z));
+    let threshold = options.threshold_at(residual_scale, kept.current().map(Factorization::scale), Dm::amax(z));
     let mut small_correction = false;
     // Whether the last correction used a reused Jacobian, and whether it was the final polish.
     let (mut stale, mut polished) = (false, false);
@@ -310,12 +367,18 @@ fn chord<Dm: Dim>(
         if iterations >= options.max_iterations {
             return Err(NewtonFailure { reason: FailureReason::NotConverged, iterations, residual });
         }
-        let delta = kept
-            .as_ref()
-            .filter(|lu| lu.is_regular())
-            .map(|lu| lu.solve(&r))
-            .filter(|d| Dm::entries(d).iter().all(|x| x.is_finite()));
-        let Some(delta) = delta else {
+        let solved = match kept.current().filter(|lu| lu.is_regular()) {
+            Some(lu) => {
+                if Dm::ON_STACK {
+                    work.delta = lu.solve(&r);
+                } else {
+                    lu.solve_into(&r, &mut work.y, &mut work.delta);
+                }
+                Dm::entries(&work.delta).iter().all(|x| x.is_finite())
+            }
+            None => false,
+        };
+        if !solved {
             if fresh {
                 return Err(NewtonFailure { reason: FailureReason::SingularJacobian, iterations, residual });
             }
@@ -323,11 +386,12 @@ fn chord<Dm: Dim>(
             (r, residual) = evaluate(kept, z, true, iterations)?;
             (fresh, jacobians) = (true, jacobians + 1);
             continue;
-        };
-        let (previous_z, previous) = (z.clone(), residual);
-        *z -= &delta;
+        }
+        copy(dim, z, &mut work.previous);
+        let previous = residual;
+        *z -= &work.delta;
         iterations += 1;
-        small_correction = Dm::amax(&delta) <= options.tolerance * (1.0 + Dm::amax(z));
+        small_correction = Dm::amax(&work.delta) <= options.tolerance * (1.0 + Dm::amax(z));
         stale = !fresh;
         fresh = !options.reuse_jacobian;
         let trial = evaluate(kept, z, fresh, iterations);
@@ -336,7 +400,7 @@ fn chord<Dm: Dim>(
         if stale && !contracted && !polished {
             // A reused Jacobian that does not contract the residual (or leads out of the domain):
             // undo the correction and evaluate the Jacobian where it started.
-            *z = previous_z;
+            copy(dim, &work.previous, z);
             (r, residual) = evaluate(kept, z, true, iterations)?;
             (fresh, jacobians, small_correction) = (true, jacobians + 1, false);
             continue;
@@ -394,5 +458,48 @@ mod tests {
         })
         .unwrap_err();
         assert_eq!(err.reason, FailureReason::NonFinite);
+    }
+
+    /// The same chord solves in a fixed and in a dynamic dimension, with one `KeptJacobian` each
+    /// carried across them (its storage reused): the same iterates, statistics and roots, bit for bit.
+    #[test]
+    fn chord_solves_keep_their_storage_and_agree_across_dimensions() {
+        use crate::dim::{Dynamic, Fixed};
+        use nalgebra::{DMatrix, DVector};
+        // r_i = z_i³ + 0.5 z_{i+1} − c_i: a Jacobian that changes along the iterates.
+        fn r(z: &[f64], c: f64) -> Vec<f64> {
+            (0..z.len()).map(|i| z[i].powi(3) + 0.5 * z[(i + 1) % z.len()] - c * (i as f64 + 1.0)).collect()
+        }
+        fn j(z: &[f64]) -> Vec<f64> {
+            let n = z.len();
+            let mut m = vec![0.0; n * n];
+            for i in 0..n {
+                m[i + n * i] += 3.0 * z[i] * z[i];
+                m[i + n * ((i + 1) % n)] += 0.5;
+            }
+            m
+        }
+        let options = NewtonOptions::default();
+        let mut fixed_kept = KeptJacobian::with_relative_cost(ACROSS_SOLVES);
+        let mut dynamic_kept = KeptJacobian::with_relative_cost(ACROSS_SOLVES);
+        let (mut zf, mut zd) = (SVector::<f64, 3>::new(1.0, 1.1, 1.2), DVector::from_column_slice(&[1.0, 1.1, 1.2]));
+        for c in [1.0, 1.05, 1.1, 3.0, 3.02] {
+            let fixed = solve_in(Fixed::<3>, &mut zf, 1.0, &options, &mut fixed_kept, |z, with| {
+                (
+                    SVector::from_column_slice(&r(z.as_slice(), c)),
+                    with.then(|| SMatrix::from_column_slice(&j(z.as_slice()))),
+                )
+            })
+            .unwrap();
+            let dynamic = solve_in(Dynamic(3), &mut zd, 1.0, &options, &mut dynamic_kept, |z, with| {
+                (DVector::from_vec(r(z.as_slice(), c)), with.then(|| DMatrix::from_vec(3, 3, j(z.as_slice()))))
+            })
+            .unwrap();
+            assert_eq!(fixed, dynamic, "c = {c}");
+            assert_eq!(zf.as_slice(), zd.as_slice(), "c = {c}");
+            assert!(r(zd.as_slice(), c).iter().all(|x| x.abs() < 1e-12), "c = {c}");
+        }
+        assert!(dynamic_kept.work.is_some() && fixed_kept.work.is_none());
+        assert!(dynamic_kept.current().is_some());
     }
 }
