@@ -57,20 +57,13 @@ impl<Dm: Dim> Factorization<Dm> {
             return false;
         }
         let threshold = rel_tol * scale;
-        let dim = self.dim;
-        if Dm::ON_STACK {
-            // Arrays of the stack are built afresh (the fewest instructions); the heap's are reused.
-            (self.lu, self.row_of, self.col_of) =
-                (dim.array(|r| dim.array(|c| a[(r, c)])), dim.array(|i| i), dim.array(|i| i));
-        } else {
-            for (r, row) in self.lu.as_mut().iter_mut().enumerate() {
-                for (c, x) in row.as_mut().iter_mut().enumerate() {
-                    *x = a[(r, c)];
-                }
+        for (r, row) in self.lu.as_mut().iter_mut().enumerate() {
+            for (c, x) in row.as_mut().iter_mut().enumerate() {
+                *x = a[(r, c)];
             }
-            for (i, (row, col)) in self.row_of.as_mut().iter_mut().zip(self.col_of.as_mut()).enumerate() {
-                (*row, *col) = (i, i);
-            }
+        }
+        for (i, (row, col)) in self.row_of.as_mut().iter_mut().zip(self.col_of.as_mut()).enumerate() {
+            (*row, *col) = (i, i);
         }
         let Self { lu, row_of, col_of, rank, .. } = self;
         *rank = 0;

@@ -157,7 +157,7 @@ pub struct KeptJacobian<Dm: Dim> {
     usable: bool,
     corrections: usize,
     relative_cost: usize,
-    /// The vectors of a solve, kept so that a solve in a dimension of the heap allocates nothing.
+    /// The vectors of a solve, kept so that a solve allocates nothing.
     work: Option<Work<Dm>>,
 }
 
@@ -180,12 +180,8 @@ impl<Dm: Dim> Work<Dm> {
 
 /// `to` = `from`, entry by entry (no allocation).
 fn copy<Dm: Dim>(dim: Dm, from: &Dm::Vector, to: &mut Dm::Vector) {
-    if Dm::ON_STACK {
-        to.clone_from(from);
-    } else {
-        for i in 0..dim.n() {
-            to[i] = from[i];
-        }
+    for i in 0..dim.n() {
+        to[i] = from[i];
     }
 }
 
@@ -303,15 +299,9 @@ pub(crate) fn solve_in<Dm: Dim>(
     if !reuse {
         kept.usable = false;
     }
-    // The stack's vectors are the solve's own (kept in registers); the heap's are kept for the next.
-    let mut work = match kept.work.take() {
-        Some(work) if !Dm::ON_STACK => work,
-        _ => Work::new(dim),
-    };
+    let mut work = kept.work.take().unwrap_or_else(|| Work::new(dim));
     let result = chord(dim, z, residual_scale, options, kept, &mut work, eval);
-    if !Dm::ON_STACK {
-        kept.work = Some(work);
-    }
+    kept.work = Some(work);
     match &result {
         Ok(stats) => kept.corrections = stats.iterations,
         Err(_) => kept.usable = false,
@@ -369,11 +359,7 @@ fn chord<Dm: Dim>(
         }
         let solved = match kept.current().filter(|lu| lu.is_regular()) {
             Some(lu) => {
-                if Dm::ON_STACK {
-                    work.delta = lu.solve(&r);
-                } else {
-                    lu.solve_into(&r, &mut work.y, &mut work.delta);
-                }
+                lu.solve_into(&r, &mut work.y, &mut work.delta);
                 Dm::entries(&work.delta).iter().all(|x| x.is_finite())
             }
             None => false,
@@ -499,7 +485,7 @@ mod tests {
             assert_eq!(zf.as_slice(), zd.as_slice(), "c = {c}");
             assert!(r(zd.as_slice(), c).iter().all(|x| x.abs() < 1e-12), "c = {c}");
         }
-        assert!(dynamic_kept.work.is_some() && fixed_kept.work.is_none());
+        assert!(dynamic_kept.work.is_some() && fixed_kept.work.is_some());
         assert!(dynamic_kept.current().is_some());
     }
 }
