@@ -185,12 +185,15 @@ pub enum WarningKind {
     /// ([`crate::LOOSE_TOLERANCE_MARGIN`]): the result may be no more accurate than the tolerance,
     /// whatever the order of the method.
     LooseTolerance,
+    /// The Legendre transform cannot be inverted at the initial data (a degenerate Lagrangian of a
+    /// rigid system): the energy is not reported.
+    NoEnergy,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
     /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`, `subdivided`,
-    /// `loose_tolerance`.
+    /// `loose_tolerance`, `no_energy`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
@@ -202,6 +205,7 @@ impl WarningKind {
             WarningKind::EnergyDrift => "energy_drift",
             WarningKind::Subdivided => "subdivided",
             WarningKind::LooseTolerance => "loose_tolerance",
+            WarningKind::NoEnergy => "no_energy",
         }
     }
 }

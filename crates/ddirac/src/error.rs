@@ -173,6 +173,32 @@ pub enum Error {
         /// What is wrong with it.
         problem: ChartProblem,
     },
+    /// A reduced run of a rigid system whose Lagrangian is not declared invariant under every rotation
+    /// of space: the reduction by SO(3) would be wrong.
+    #[error(
+        "reduction by SO(3) needs a Lagrangian invariant under every rotation of space; this system's symmetry \
+         is `{symmetry}`{}: run it unreduced (`reduced = false`), which conserves {}",
+        if *symmetry == "vertical" { " (rotations about the vertical e3 only, as gravity allows)" } else { "" },
+        if *symmetry == "vertical" { "the vertical angular momentum e3 · R Π" } else { "what the system conserves" }
+    )]
+    NotReducible {
+        /// The symmetry the system declares ([`crate::rigid::Symmetry::name`]).
+        symmetry: &'static str,
+    },
+    /// A rigid system's Lagrangian is not invariant under the rotations it declares as its symmetry.
+    #[error(
+        "the Lagrangian is not invariant under its declared symmetry `{symmetry}`: ℓ(g R, Ω, s, ṡ) differs from \
+         ℓ(R, Ω, s, ṡ) by {deviation:.2e} (relative) for a rotation g of that group, more than the tolerance \
+         {tolerance:.0e}"
+    )]
+    NotInvariantUnderRotations {
+        /// The declared symmetry ([`crate::rigid::Symmetry::name`]).
+        symmetry: &'static str,
+        /// Largest relative change observed.
+        deviation: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
     /// Compiled derivatives were required (`method.derivatives = "compiled"`) but could not be built.
     #[error("compiled derivatives are not available: {0}")]
     NotCompiled(#[source] crate::compiled::CompileError),
@@ -318,6 +344,15 @@ pub enum Reason {
         /// By how much it fails.
         deviation: f64,
     },
+    /// A matrix that is not a rotation: RᵀR ≠ I or det R ≠ 1 beyond the tolerance.
+    NotARotation {
+        /// The largest entry of |RᵀR − I|.
+        orthogonality: f64,
+        /// det R.
+        determinant: f64,
+        /// The tolerance both are held to.
+        tolerance: f64,
+    },
     /// A reason given by a front end (the command line's thread pool, say).
     Other(String),
 }
@@ -375,6 +410,11 @@ impl fmt::Display for Reason {
                 write!(f, "K is {rows}×{columns}, the system has {group} group and {shape} shape coordinates")
             }
             Reason::Axiom { axiom, deviation } => write!(f, "axiom {axiom} of Definition 2.1 fails by {deviation:.2e}"),
+            Reason::NotARotation { orthogonality, determinant, tolerance } => write!(
+                f,
+                "not a rotation: |RᵀR − I| is {orthogonality:.2e} and det R = {determinant} (both must hold to \
+                 {tolerance:.0e}: R orthogonal with determinant 1)"
+            ),
             Reason::Other(why) => f.write_str(why),
         }
     }
@@ -512,6 +552,12 @@ pub enum Input {
     State,
     /// An argument of a function of the library, by the name its documentation gives it.
     Argument(String),
+    /// The initial attitude R0 of a rigid system ([`crate::rigid::RigidProblem::r0`]).
+    InitialAttitude,
+    /// The initial body angular momentum Π0 of a rigid system.
+    InitialAngularMomentum,
+    /// The initial body angular velocity Ω0 of a rigid system.
+    InitialAngularVelocity,
 }
 
 impl std::fmt::Display for Input {
@@ -529,6 +575,9 @@ impl std::fmt::Display for Input {
             Input::Parameter(name) => write!(f, "parameter `{name}`"),
             Input::State => f.write_str("state (q, p)"),
             Input::Argument(name) => f.write_str(name),
+            Input::InitialAttitude => f.write_str("initial attitude R"),
+            Input::InitialAngularMomentum => f.write_str("initial body angular momentum Π"),
+            Input::InitialAngularVelocity => f.write_str("initial body angular velocity Ω"),
         }
     }
 }

@@ -8,6 +8,7 @@ mod double_spherical_pendulum;
 mod heavy_top;
 mod kepler;
 mod pendulum_chain;
+mod rigid_body;
 mod spherical_pendulum;
 mod two_body;
 
@@ -17,6 +18,7 @@ pub use double_spherical_pendulum::DoubleSphericalPendulum;
 pub use heavy_top::HeavyTop;
 pub use kepler::Kepler;
 pub use pendulum_chain::{DynamicPendulumChain, PendulumChain};
+pub use rigid_body::RigidBody;
 pub use spherical_pendulum::SphericalPendulum;
 pub use two_body::TwoBody;
 

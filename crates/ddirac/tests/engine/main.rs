@@ -58,5 +58,6 @@ mod newton_residual_test_at_an_electrons_mass;
 mod pendulum_chain;
 mod published_values;
 mod reduction_consistency;
+mod rigid_body;
 mod stepper;
 mod undetermined_motion_is_refused;
