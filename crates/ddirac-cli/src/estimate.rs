@@ -37,11 +37,15 @@ impl Estimate {
     /// The output of `plan` in `formats`.
     pub fn new(plan: &Plan, formats: Formats) -> Self {
         let coordinates = plan.system.coordinates();
-        let n = coordinates.len() as u64;
-        let n_g = coordinates.iter().filter(|c| c.role == ddirac::Role::Group).count() as u64;
-        let (steps, every) = (plan.problem.steps as u64, plan.output.every.max(1) as u64);
+        let n = coordinates.len();
+        let n_g = coordinates.iter().filter(|c| c.role == ddirac::Role::Group).count();
+        Self::of(plan.problem.steps, plan.output.every, 2 * n + 3 + n_g, formats)
+    }
+
+    /// The output of `steps` steps with a row every `every` steps, of `columns` numbers each.
+    pub fn of(steps: usize, every: usize, columns: usize, formats: Formats) -> Self {
+        let (steps, every, columns) = (steps as u64, every.max(1) as u64, columns as u64);
         let rows = steps / every + 1 + u64::from(steps % every != 0);
-        let columns = 2 * n + 3 + n_g;
         let values = rows.saturating_mul(columns);
         Self {
             rows,
@@ -86,6 +90,19 @@ pub fn check(
     quiet: bool,
 ) -> Result<(), Box<SpecError>> {
     let estimate = Estimate::new(plan, formats);
+    check_estimate(source, spec, estimate, (plan.problem.steps, plan.output.every), dir, runs, quiet)
+}
+
+/// [`check`] of the estimate of runs of `(steps, every)`.
+pub fn check_estimate(
+    source: &SpecSource,
+    spec: &Spec,
+    estimate: Estimate,
+    (steps, every): (usize, usize),
+    dir: &Path,
+    runs: u64,
+    quiet: bool,
+) -> Result<(), Box<SpecError>> {
     let total = estimate.bytes().saturating_mul(runs);
     let what = match runs {
         1 => estimate.describe(),
@@ -103,7 +120,7 @@ pub fn check(
         .take(2)
         .enumerate()
         .map(|(i, span)| {
-            let label = (i == 0).then(|| format!("{} steps, {} rows", plan.problem.steps, count(estimate.rows)));
+            let label = (i == 0).then(|| format!("{steps} steps, {} rows", count(estimate.rows)));
             LabeledSpan::new_with_span(label, span)
         })
         .chain(
@@ -115,7 +132,7 @@ pub fn check(
         .collect();
         let thin = (total as f64 / (free as f64 / 2.0)).max(1.0);
         // At most i64::MAX, the largest value `output.every` takes.
-        let every = (10f64.powf(thin.log10().ceil()) as u64).saturating_mul(plan.output.every.max(1) as u64);
+        let every = (10f64.powf(thin.log10().ceil()) as u64).saturating_mul(every.max(1) as u64);
         let every = every.min(i64::MAX as u64);
         return Err(source
             .error_with(

@@ -21,6 +21,7 @@ pub mod overrides;
 pub mod plot;
 pub mod progress;
 pub mod report;
+pub mod rigid;
 pub mod run;
 pub mod run_dir;
 pub mod signals;

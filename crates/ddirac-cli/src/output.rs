@@ -123,12 +123,19 @@ impl Trajectory {
         chart: bool,
         formats: Formats,
     ) -> Result<Self, FileError> {
-        let names = columns(coordinates, group, chart);
+        let mut trajectory = Self::with_columns(dir, &columns(coordinates, group, chart), formats)?;
+        trajectory.chart = chart;
+        Ok(trajectory)
+    }
+
+    /// Creates the files of a trajectory with the columns `names` in the (empty) directory `dir`,
+    /// for rows written by [`Trajectory::write_values`].
+    pub fn with_columns(dir: &Path, names: &[String], formats: Formats) -> Result<Self, FileError> {
         let csv = match formats.csv {
             true => {
                 let path = dir.join(Self::CSV);
                 let mut writer = csv::Writer::from_writer(at(&path, File::create(&path))?);
-                at(&path, writer.write_record(&names).map_err(io::Error::from))?;
+                at(&path, writer.write_record(names).map_err(io::Error::from))?;
                 Some((writer, path))
             }
             false => None,
@@ -136,7 +143,7 @@ impl Trajectory {
         let npy = match formats.npy {
             true => {
                 let npy_dir = dir.join(Self::NPY_DIR);
-                at(&npy_dir, check_file_names(&names))?;
+                at(&npy_dir, check_file_names(names))?;
                 // Not `create_dir_all`: once a signal has removed the staging directory, nothing
                 // of the run may reappear.
                 at(&npy_dir, std::fs::create_dir(&npy_dir))?;
@@ -150,19 +157,25 @@ impl Trajectory {
             }
             false => vec![],
         };
-        Ok(Self { csv, npy, field: String::new(), dir: dir.to_owned(), chart })
+        Ok(Self { csv, npy, field: String::new(), dir: dir.to_owned(), chart: false })
     }
 
     /// Appends one row. The last row has an empty `discrete_energy` in the CSV and NaN in
     /// `discrete_energy.npy`.
     pub fn write(&mut self, row: &Row<'_>) -> Result<(), FileError> {
+        let chart = self.chart;
         let numbers = || {
             std::iter::once(Some(row.t))
                 .chain(row.q.iter().chain(row.p).map(|&v| Some(v)))
                 .chain([Some(row.energy), row.discrete_energy])
                 .chain(row.momentum_map.iter().map(|&v| Some(v)))
-                .chain(self.chart.then_some(Some(row.chart as f64)))
+                .chain(chart.then_some(Some(row.chart as f64)))
         };
+        self.write_values(numbers)
+    }
+
+    /// Appends one row of values, one per column (`None`: an empty CSV field, NaN in the `.npy` file).
+    pub fn write_values<I: Iterator<Item = Option<f64>>>(&mut self, numbers: impl Fn() -> I) -> Result<(), FileError> {
         if let Some((writer, path)) = &mut self.csv {
             for value in numbers() {
                 self.field.clear();

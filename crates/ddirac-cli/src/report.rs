@@ -50,7 +50,7 @@ pub struct WarningJson {
 }
 
 impl WarningJson {
-    fn new(w: &ddirac::Warning) -> Self {
+    pub(crate) fn new(w: &ddirac::Warning) -> Self {
         Self { kind: w.kind.name(), step: w.step, t: w.t, message: w.message.clone(), count: w.count }
     }
 }
@@ -63,7 +63,7 @@ pub fn print_warnings(warnings: &[ddirac::Warning]) {
 }
 
 /// Parameters as a JSON object `{name: value}`, in the system's order.
-struct Parameters<'a>(&'a [(String, f64)]);
+pub(crate) struct Parameters<'a>(pub(crate) &'a [(String, f64)]);
 
 impl Serialize for Parameters<'_> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -112,7 +112,7 @@ struct FinalJson<'a> {
 }
 
 #[derive(Serialize)]
-struct StatsJson {
+pub(crate) struct StatsJson {
     #[serde(skip_serializing_if = "Option::is_none")]
     initial: Option<f64>,
     min: f64,
@@ -121,7 +121,7 @@ struct StatsJson {
 }
 
 impl StatsJson {
-    fn new(s: &Stats, with_initial: bool) -> Self {
+    pub(crate) fn new(s: &Stats, with_initial: bool) -> Self {
         Self { initial: with_initial.then_some(s.initial), min: s.min, max: s.max, mean: s.mean }
     }
 }
@@ -135,13 +135,26 @@ struct MomentumMapJson<'a> {
 }
 
 #[derive(Serialize)]
-struct NewtonJson {
+pub(crate) struct NewtonJson {
     total_iterations: usize,
     total_jacobians: usize,
     max_iterations: usize,
     max_residual: f64,
     subdivided_steps: usize,
     max_subdivision: usize,
+}
+
+impl NewtonJson {
+    pub(crate) fn new(n: &ddirac::diagnostics::NewtonSummary) -> Self {
+        Self {
+            total_iterations: n.total_iterations,
+            total_jacobians: n.total_jacobians,
+            max_iterations: n.max_iterations,
+            max_residual: n.max_residual,
+            subdivided_steps: n.subdivided_steps,
+            max_subdivision: n.max_subdivision,
+        }
+    }
 }
 
 /// What a run was, besides the library's [`Summary`] of it: what `summary.json` records of the
@@ -233,14 +246,7 @@ pub fn summary_json_of<'a>(record: RunRecord<'a>, summary: &'a Summary) -> Summa
             max_relative_drift: summary.momentum_map.max_relative_drift,
         },
         derivatives: summary.derivatives.to_string(),
-        newton: NewtonJson {
-            total_iterations: summary.newton.total_iterations,
-            total_jacobians: summary.newton.total_jacobians,
-            max_iterations: summary.newton.max_iterations,
-            max_residual: summary.newton.max_residual,
-            subdivided_steps: summary.newton.subdivided_steps,
-            max_subdivision: summary.newton.max_subdivision,
-        },
+        newton: NewtonJson::new(&summary.newton),
         wall_seconds: summary.wall_seconds,
         total_wall_seconds: record.total_seconds,
         reference_error: summary.reference_error,
@@ -330,7 +336,7 @@ fn momentum_map(j: &ddirac::diagnostics::MomentumMapDrift) -> String {
 }
 
 /// The warnings line: their number and kinds (each is printed in full on stderr).
-fn warnings(warnings: &[ddirac::Warning]) -> String {
+pub(crate) fn warnings(warnings: &[ddirac::Warning]) -> String {
     if warnings.is_empty() {
         return "  warnings         none".into();
     }

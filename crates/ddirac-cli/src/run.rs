@@ -33,7 +33,11 @@ pub struct RunOptions {
 pub fn run(options: &RunOptions) -> Result<(), CliError> {
     let started = Instant::now();
     let path = &options.spec;
-    let loaded = load(path, &options.set)?;
+    let text = read(path)?;
+    if crate::rigid::names_rigid_body(&text, &options.set) {
+        return crate::rigid::run(options, text, started);
+    }
+    let loaded = load_text(path, text, &options.set)?;
     loaded.print_notes();
     let Loaded { source, spec, plan, .. } = loaded;
     let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
@@ -75,12 +79,16 @@ impl Loaded {
 
 /// Reads the spec at `path`, applies `set` and validates it.
 pub fn load(path: &Path, set: &[String]) -> Result<Loaded, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
+    load_text(path, read(path)?, set)
+}
+
+/// The text of the spec file at `path`.
+pub fn read(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|source| CliError::Read {
         what: "the spec file",
         path: path.to_owned(),
         source,
-    })?;
-    load_text(path, text, set)
+    })
 }
 
 /// Applies `set` to the spec text `text` of the file `path` and validates it. Assignments of

@@ -353,6 +353,11 @@ pub enum Reason {
         /// The tolerance both are held to.
         tolerance: f64,
     },
+    /// Initial data whose energy overflows f64.
+    EnergyOverflow {
+        /// The energy computed.
+        energy: f64,
+    },
     /// A reason given by a front end (the command line's thread pool, say).
     Other(String),
 }
@@ -415,6 +420,9 @@ impl fmt::Display for Reason {
                 "not a rotation: |RᵀR − I| is {orthogonality:.2e} and det R = {determinant} (both must hold to \
                  {tolerance:.0e}: R orthogonal with determinant 1)"
             ),
+            Reason::EnergyOverflow { energy } => {
+                write!(f, "the energy at the initial data is {energy}: it overflows the range of f64 (scale the units)")
+            }
             Reason::Other(why) => f.write_str(why),
         }
     }

@@ -31,8 +31,28 @@ pub fn initial(
     spans: &mut Spans,
 ) -> Result<(Vec<f64>, InitialMomentum), Box<SpecError>> {
     let initial = spec.initial.get_ref();
+    let rigid = [
+        initial.r.as_ref().map(|v| (v.span(), "R")),
+        initial.pi.as_ref().map(|v| (v.span(), "Pi")),
+        initial.omega.as_ref().map(|v| (v.span(), "Omega")),
+    ];
+    if let Some((span, name)) = rigid.into_iter().flatten().next() {
+        return Err(source
+            .error(Some(span), format!("`initial.{name}` belongs to a rigid body"), "not a key of this system")
+            .with_help(
+                "`initial.R`, `initial.Pi` and `initial.Omega` are the initial data of `system = \"rigid_body\"`; \
+                 this system has coordinates: give `initial.q` and one of `initial.p`, `initial.v`",
+            ));
+    }
+    let Some(q) = &initial.q else {
+        return Err(source
+            .error(Some(spec.initial.span()), "`initial.q` is missing", "no `q` in this table")
+            .with_help(
+                "give the initial configuration: `q = [...]` in the coordinate order, or `q = { name = value }`",
+            ));
+    };
     let of = |which| match which {
-        Which::Q => Some(&initial.q),
+        Which::Q => Some(q),
         Which::P => initial.p.as_ref(),
         Which::V => initial.v.as_ref(),
     };
@@ -52,10 +72,9 @@ pub fn initial(
     };
     let given = |v: Option<&Spanned<Vector>>| v.map(|v| values(v.get_ref()));
     let (p, v) = (given(initial.p.as_ref()), given(initial.v.as_ref()));
-    let result =
-        crate::keys::initial::initial(&values(initial.q.get_ref()), p.as_ref(), v.as_ref(), names, Spelling::Spec)
-            .map_err(|error| source.refusal(error, span_of))?;
-    spans.q = Some(initial.q.span());
+    let result = crate::keys::initial::initial(&values(q.get_ref()), p.as_ref(), v.as_ref(), names, Spelling::Spec)
+        .map_err(|error| source.refusal(error, span_of))?;
+    spans.q = Some(q.span());
     spans.momentum = initial.p.as_ref().or(initial.v.as_ref()).map(|x| x.span());
     Ok(result)
 }

@@ -16,6 +16,7 @@
 //!               order = 2  composition = "suzuki"  atlas = true
 //! [time]        step = 0.2  steps = 100  duration = 20.0   # any two, or all three if consistent
 //! [initial]     q = [0, 0, 0, 0]  p = { x = 1, y = 0, z = 1, theta = 1 }   # or v = ...
+//!               R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]  Pi = [0, 1, 0]   # rigid_body: or Omega = ...
 //! [output]      directory = "out/cp"  every = 1  wrap_angles = false  plots = false  format = ["csv", "npy"]
 //! ```
 //!
@@ -36,7 +37,9 @@ use serde::Deserialize;
 use toml::Spanned;
 
 pub use time::changed_step;
-pub use validate::{validate, Plan};
+pub(crate) use time::grid;
+pub(crate) use validate::method as method_of;
+pub use validate::{validate, Plan, Spans};
 
 use crate::diagnostics::{SpecError, SpecSource};
 
@@ -264,16 +267,26 @@ pub struct TimeSpec {
     pub duration: Option<Number>,
 }
 
-/// `[initial]`: q and exactly one of p, v, each in the coordinate order or by coordinate name.
+/// `[initial]`: q and exactly one of p, v, each in the coordinate order or by coordinate name; for
+/// a rigid body (`system = "rigid_body"`), the attitude R and exactly one of Π, Ω instead.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSpec {
     /// Initial configuration.
-    pub q: Spanned<Vector>,
+    pub q: Option<Spanned<Vector>>,
     /// Initial momenta.
     pub p: Option<Spanned<Vector>>,
     /// Initial velocities.
     pub v: Option<Spanned<Vector>>,
+    /// A rigid body's initial attitude R (body to space): three rows of three numbers.
+    #[serde(rename = "R")]
+    pub r: Option<Spanned<Vec<Numbers>>>,
+    /// A rigid body's initial body angular momentum Π.
+    #[serde(rename = "Pi")]
+    pub pi: Option<Numbers>,
+    /// A rigid body's initial body angular velocity Ω.
+    #[serde(rename = "Omega")]
+    pub omega: Option<Numbers>,
 }
 
 /// One number per coordinate: an array in the coordinate order, or a table by coordinate name.

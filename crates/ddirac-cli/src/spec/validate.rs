@@ -44,6 +44,14 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
     // The span of each coordinate's name in a `[system]` table.
     let mut declared: Vec<(String, Range<usize>)> = vec![];
     let (name, system, parameters) = match spec.system.get_ref() {
+        SystemRef::BuiltIn(name) if name == crate::rigid::NAME => {
+            return Err(source
+                .error(Some(spec.system.span()), "this command does not take the rigid body yet", "a rigid body")
+                .with_help(
+                    "`ddirac run` runs `rigid_body` (and Python's `ddirac.simulate`); ensembles, convergence \
+                     studies, `--compare` and `check` take the systems in coordinates (`ddirac systems`)",
+                ))
+        }
         SystemRef::BuiltIn(name) => {
             let built_in = built_in(source, name, spec.system.span())?;
             let (parameters, overrides) = parameters(source, spec, built_in, &mut spans)?;
@@ -188,7 +196,8 @@ fn parameters(
     Ok((all, overrides))
 }
 
-fn method(
+/// The `[method]` of `spec` for a system of `coordinates`, refusals pointing at the keys.
+pub(crate) fn method(
     source: &SpecSource,
     spec: &Spec,
     coordinates: &[Coordinate],

@@ -17,7 +17,7 @@ use crate::diagnostics::{Accumulator, MomentumMapDrift, NewtonSummary, Stats, Wa
 use crate::dim::Dynamic;
 use crate::energy_jump::{JumpAction, Monitor};
 use crate::newton::KeptJacobian;
-use crate::{Differentiation, EnergyChange, Error, Input, Method, Reason, Variant};
+use crate::{Differentiation, EnergyChange, Error, Input, Method, Reason, Variant, MAX_ANGLE_STEP};
 
 /// A row of a rigid system's trajectory.
 #[derive(Debug, Clone, PartialEq)]
@@ -177,6 +177,14 @@ impl<'s, S: RigidSystem> RigidStepper<'s, S> {
                 (pi, p, Some(w))
             }
         };
+        let energy = velocities.as_ref().map_or(f64::NAN, |w| legendre::energy(system, &r, &s, w));
+        if velocities.is_some() && !energy.is_finite() {
+            let what = match &problem.initial {
+                RigidInitial::Momentum { .. } => Input::InitialAngularMomentum,
+                RigidInitial::Velocity { .. } => Input::InitialAngularVelocity,
+            };
+            return Err(Error::Invalid { what, why: Reason::EnergyOverflow { energy } });
+        }
         if method.check_invariance {
             let w = velocities.clone().unwrap_or_else(|| DVector::zeros(3 + shape));
             test_symmetry(system, &r, &[w[0], w[1], w[2]], &s, &w.as_slice()[3..])?;
@@ -188,7 +196,6 @@ impl<'s, S: RigidSystem> RigidStepper<'s, S> {
             .map(|gamma| SubStep { h: gamma * problem.step, kept: KeptJacobian::new(Dynamic(3 + shape)), last: None })
             .collect();
         let point = Point { r, pi, s, p };
-        let energy = velocities.as_ref().map_or(f64::NAN, |w| legendre::energy(system, &point.r, &point.s, w));
         let j0 = so3::apply(&point.r, &point.pi);
         let casimir0 = so3::dot(&point.pi, &point.pi).sqrt();
         let mut monitor = Monitor::new(method.energy_jump);
@@ -264,6 +271,8 @@ impl<'s, S: RigidSystem> RigidStepper<'s, S> {
         let t = k as f64 * h;
         let mut point = self.point.clone();
         let mut velocities = self.velocities.clone();
+        // The body's rotation in the step: the sum of the sub-steps' angles 2 arctan(|ζ|/2).
+        let mut turned = 0.0;
         for sub in &mut self.subs {
             let f = StepLagrangian {
                 system: self.system,
@@ -290,6 +299,7 @@ impl<'s, S: RigidSystem> RigidStepper<'s, S> {
             if !finite {
                 return Err(Error::Diverged { step: k, t, h });
             }
+            turned += 2.0 * (0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()).atan();
             let increment = (0..self.shape).map(|i| next.s[i] - point.s[i]).collect();
             sub.last = Some((x, increment));
             let newton = &mut self.record.newton;
@@ -306,6 +316,13 @@ impl<'s, S: RigidSystem> RigidStepper<'s, S> {
             self.velocities.as_ref().map_or(f64::NAN, |w| legendre::energy(self.system, &point.r, &point.s, w));
         self.point = point;
         self.k += 1;
+        if turned > MAX_ANGLE_STEP {
+            let message = format!(
+                "the body turned by {turned:.3} rad in one step (more than {MAX_ANGLE_STEP} rad): the step does not \
+                 resolve the rotation (try a smaller step)"
+            );
+            self.record.warnings.push(Warning::new(WarningKind::UnderResolved, Some((k, t)), message));
+        }
         self.watch((k, t))
     }
 

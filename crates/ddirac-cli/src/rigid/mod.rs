@@ -1,0 +1,140 @@
+//! `ddirac run` of the rigid body (`system = "rigid_body"`, [`ddirac::systems::RigidBody`]): its spec
+//! ([`plan`]), its run into an output directory (staged, locked and committed as a set, as every
+//! run), and what it writes ([`report`]): `trajectory.csv` with the columns `t`, `R11` … `R33`,
+//! `Pi1` … `Pi3`, `energy`, `momentum_x` … `momentum_z` (the spatial angular momentum R Π), the same
+//! columns as `npy/<column>.npy`, and `summary.json` with `final.R` (three rows) and `final.Pi`.
+
+pub mod plan;
+pub mod report;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use ddirac::rigid::RigidStepper;
+
+use crate::diagnostics::{CliError, SpecSource};
+use crate::output::{self, Trajectory};
+use crate::progress::Progress;
+use crate::run::RunOptions;
+use crate::run_dir::RunDir;
+use crate::{estimate, initial_entries, lock, overrides, signals, spec};
+
+pub use plan::RigidPlan;
+
+/// The name of the built-in rigid body in specs.
+pub const NAME: &str = "rigid_body";
+
+/// Whether the spec text, with the `--set` assignments `set` applied, names the rigid body
+/// (`system = "rigid_body"`). A text that does not parse does not: its run reports the error.
+pub fn names_rigid_body(text: &str, set: &[String]) -> bool {
+    let named = |text: &str| {
+        toml::from_str::<toml::Table>(text).ok().is_some_and(|t| t.get("system").and_then(|s| s.as_str()) == Some(NAME))
+    };
+    let edits: Vec<String> = set.iter().filter(|a| a.trim_start().starts_with("system")).cloned().collect();
+    if edits.is_empty() {
+        return named(text);
+    }
+    overrides::apply(&SpecSource::new("spec".to_owned(), text.to_owned()), &edits).is_ok_and(|edited| named(&edited))
+}
+
+/// A rigid body's spec read, with its `--set` assignments applied, parsed and validated.
+pub struct LoadedRigid {
+    /// The spec text that diagnostics quote.
+    pub source: SpecSource,
+    /// The parsed spec.
+    pub spec: spec::Spec,
+    /// The validated spec.
+    pub plan: RigidPlan,
+}
+
+/// Applies `set` to the spec text `text` of the file `path` and validates it as a rigid body's.
+pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<LoadedRigid, CliError> {
+    let original = SpecSource::new(path.display().to_string(), text);
+    if let Some(arg) =
+        set.iter().find(|a| a.split_once('=').is_some_and(|(k, _)| initial_entries::Entry::parse(k).is_some()))
+    {
+        return Err(CliError::Set {
+            arg: arg.clone(),
+            why: "a rigid body has no coordinates to set one by one: set `initial.R`, `initial.Pi` or \
+                  `initial.Omega` whole (e.g. `--set 'initial.Pi=[0, 1, 0.1]'`)"
+                .into(),
+        });
+    }
+    let source = if set.is_empty() {
+        original
+    } else {
+        SpecSource::new(format!("{} (with --set)", path.display()), overrides::apply(&original, set)?)
+    };
+    let spec = spec::parse(&source)?;
+    let plan = plan::validate(&source, &spec)?;
+    Ok(LoadedRigid { source, spec, plan })
+}
+
+/// `ddirac run` of a rigid body's spec whose text is `text`.
+pub fn run(options: &RunOptions, text: String, started: Instant) -> Result<(), CliError> {
+    let LoadedRigid { source, spec, plan } = load_text(&options.spec, text, &options.set)?;
+    let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
+    let dir = match (&options.out, &plan.directory) {
+        (Some(out), _) => out.clone(),
+        (None, Some(d)) => PathBuf::from(d),
+        (None, None) => {
+            let stem = options.spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("out").join(stem)
+        }
+    };
+    let columns = report::columns(&[]);
+    let estimate = estimate::Estimate::of(plan.problem.steps, plan.every, columns.len(), formats);
+    let grid = (plan.problem.steps, plan.every);
+    estimate::check_estimate(&source, &spec, estimate, grid, &dir, 1, options.quiet)?;
+    let mut progress = Progress::new(plan.problem.steps as u64, options.quiet);
+    let result = write_run(&source, &spec, &plan, &options.spec, &dir, formats, started, &mut progress);
+    progress.finish();
+    let text = result?;
+    if !options.quiet {
+        println!("{text}");
+    }
+    Ok(())
+}
+
+/// Integrates and writes the trajectory and `summary.json` into `dir`; returns the human summary.
+#[allow(clippy::too_many_arguments)]
+fn write_run(
+    source: &SpecSource,
+    spec: &spec::Spec,
+    plan: &RigidPlan,
+    path: &Path,
+    dir: &Path,
+    formats: output::Formats,
+    started: Instant,
+    progress: &mut Progress,
+) -> Result<String, CliError> {
+    let run_dir = RunDir::open(dir, &lock::command_line())?;
+    let staging = run_dir.staging();
+    let mut trajectory = Trajectory::with_columns(staging, &report::columns(&[]), formats)?;
+    let refused = |e: ddirac::Error| match plan::locate(spec, &e) {
+        Some((span, label)) => CliError::from(source.error(Some(span), e.to_string(), label)),
+        None => CliError::Integration(e),
+    };
+    let mut stepper = RigidStepper::new(&plan.body, plan.problem.clone(), &plan.method).map_err(refused)?;
+    let mut write = |stepper: &RigidStepper<'_, _>| -> Result<(), CliError> {
+        let row = stepper.row();
+        progress.update(row.k);
+        signals::check(Some(row.k)).map_err(CliError::Interrupted)?;
+        Ok(trajectory.write_values(|| report::values(&row))?)
+    };
+    write(&stepper)?;
+    while !stepper.is_finished() {
+        stepper.step().map_err(CliError::Integration)?;
+        if stepper.k() % plan.every == 0 || stepper.is_finished() {
+            write(&stepper)?;
+        }
+    }
+    let summary = stepper.summary();
+    crate::report::print_warnings(&summary.warnings);
+    let mut files = trajectory.finish()?;
+    let total = started.elapsed().as_secs_f64();
+    let json = report::summary_json(plan, &summary, Some(path), Some(total));
+    files.push(output::json(staging, "summary.json", &json)?);
+    run_dir.commit(&files)?;
+    Ok(report::human(plan, &summary, dir, total))
+}
