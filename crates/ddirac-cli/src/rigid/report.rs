@@ -219,10 +219,16 @@ pub fn human(plan: &RigidPlan, summary: &RigidSummary, dir: &Path, total_seconds
             j.max_drift,
             j.max_relative_drift.map_or(String::new(), |r| format!(" (relative {r:.3e})"))
         ),
-        format!(
-            "  |Pi|             {:.10e}, relative drift {:.3e}; |R^T R - I| at most {:.3e}",
-            summary.casimir.initial, summary.casimir.max_relative_drift, summary.orthogonality
-        ),
+        match summary.symmetry {
+            ddirac::rigid::Symmetry::Rotations => format!(
+                "  |Pi|             {:.10e}, relative drift {:.3e}; |R^T R - I| at most {:.3e}",
+                summary.casimir.initial, summary.casimir.max_relative_drift, summary.orthogonality
+            ),
+            _ => format!(
+                "  |R^T R - I|      at most {:.3e} (|Pi| is not conserved without the symmetry of every rotation)",
+                summary.orthogonality
+            ),
+        },
         format!(
             "  newton           {} iterations in total, at most {} per step, {} Jacobians, largest residual {:.3e}",
             summary.newton.total_iterations,
