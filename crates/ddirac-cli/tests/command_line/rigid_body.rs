@@ -1,0 +1,308 @@
+//! `ddirac run` of the rigid body (`system = "rigid_body"`): its trajectory and summary against
+//! Euler's equations integrated here by RK4 (Π̇ = Π × Ω + m g Γ × c, Γ = Rᵀe3, Ṙ = R Ω̂), the
+//! reduced run against the unreduced one, the fixed column and key names, and every wrong,
+//! degenerate and extreme input refused, warned or right.
+
+use crate::common;
+
+use common::{assert_fails, run, succeed, TempDir};
+
+type M3 = [[f64; 3]; 3];
+
+const FREE: &str = r#"system = "rigid_body"
+[parameters]
+I1 = 1.0
+I2 = 2.0
+I3 = 3.0
+m = 0.0
+[method]
+order = 4
+[time]
+step = 0.01
+duration = 5.0
+[initial]
+R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+Omega = [0.01, 2.0, 0.01]
+[output]
+every = 10
+"#;
+
+/// A heavy asymmetric top tilted by 0.3 rad about the first axis.
+fn heavy() -> String {
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    format!(
+        "system = \"rigid_body\"\n[parameters]\nI1 = 1.0\nI2 = 1.3\nI3 = 0.4\nm = 1.0\ng = 9.8\nc1 = 0.05\nc3 = 0.5\n\
+         [method]\norder = 4\n[time]\nstep = 0.005\nduration = 3.0\n[initial]\n\
+         R = [[1, 0, 0], [0, {c:?}, {:?}], [0, {s:?}, {c:?}]]\nPi = [0.3, -0.2, 1.5]\n[output]\nevery = 20\n",
+        -s
+    )
+}
+
+fn mul(a: &M3, b: &M3) -> M3 {
+    let mut c = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    c
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Euler's equations of the body (I, m g c) from (R0, Π0) over `t` by RK4 with `n` steps.
+fn euler_rk4(inertia: [f64; 3], mgc: [f64; 3], r0: M3, pi0: [f64; 3], t: f64, n: usize) -> (M3, [f64; 3]) {
+    let field = |r: &M3, pi: &[f64; 3]| -> (M3, [f64; 3]) {
+        let omega = [0, 1, 2].map(|i| pi[i] / inertia[i]);
+        let gamma = [r[2][0], r[2][1], r[2][2]];
+        let torque = cross(gamma, mgc);
+        let spin = cross(*pi, omega);
+        let hat = [[0.0, -omega[2], omega[1]], [omega[2], 0.0, -omega[0]], [-omega[1], omega[0], 0.0]];
+        (mul(r, &hat), [0, 1, 2].map(|i| spin[i] + torque[i]))
+    };
+    let h = t / n as f64;
+    let (mut r, mut pi) = (r0, pi0);
+    let add = |r: &M3, pi: &[f64; 3], k: &(M3, [f64; 3]), a: f64| -> (M3, [f64; 3]) {
+        let mut rr = *r;
+        for i in 0..3 {
+            for j in 0..3 {
+                rr[i][j] += a * k.0[i][j];
+            }
+        }
+        (rr, [0, 1, 2].map(|i| pi[i] + a * k.1[i]))
+    };
+    for _ in 0..n {
+        let k1 = field(&r, &pi);
+        let s2 = add(&r, &pi, &k1, h / 2.0);
+        let k2 = field(&s2.0, &s2.1);
+        let s3 = add(&r, &pi, &k2, h / 2.0);
+        let k3 = field(&s3.0, &s3.1);
+        let s4 = add(&r, &pi, &k3, h);
+        let k4 = field(&s4.0, &s4.1);
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] += h / 6.0 * (k1.0[i][j] + 2.0 * k2.0[i][j] + 2.0 * k3.0[i][j] + k4.0[i][j]);
+            }
+            pi[i] += h / 6.0 * (k1.1[i] + 2.0 * k2.1[i] + 2.0 * k3.1[i] + k4.1[i]);
+        }
+    }
+    (r, pi)
+}
+
+fn final_state(summary: &serde_json::Value) -> (M3, [f64; 3]) {
+    let rows = summary["final"]["R"].as_array().expect("final.R is a list of rows");
+    assert_eq!(rows.len(), 3);
+    let mut r = [[0.0; 3]; 3];
+    for (i, row) in rows.iter().enumerate() {
+        let row = common::numbers(row);
+        assert_eq!(row.len(), 3);
+        r[i] = [row[0], row[1], row[2]];
+    }
+    let pi = common::numbers(&summary["final"]["Pi"]);
+    (r, [pi[0], pi[1], pi[2]])
+}
+
+fn distance(a: &(M3, [f64; 3]), b: &(M3, [f64; 3])) -> f64 {
+    let r = (0..9).map(|k| (a.0[k / 3][k % 3] - b.0[k / 3][k % 3]).abs()).fold(0.0, f64::max);
+    (0..3).map(|i| (a.1[i] - b.1[i]).abs()).fold(r, f64::max)
+}
+
+#[test]
+fn a_free_body_follows_eulers_equations_and_the_reduced_run_agrees_with_the_unreduced() {
+    let dir = TempDir::new("rigid-free");
+    let spec = dir.file("free.toml", FREE);
+    let reference = euler_rk4(
+        [1.0, 2.0, 3.0],
+        [0.0; 3],
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        [0.01, 4.0, 0.03],
+        5.0,
+        50_000,
+    );
+    let unreduced = succeed(&spec, &[], &dir);
+    let state = final_state(&unreduced.summary);
+    // Order 4 at h = 0.01, |Ω| = 2: an error of order (h|Ω|)⁴ ≈ 1e-7 over the run.
+    assert!(distance(&state, &reference) < 1e-6, "off by {:e}", distance(&state, &reference));
+    let header: Vec<&str> = unreduced.columns.keys().map(String::as_str).collect();
+    for name in [
+        "t",
+        "R11",
+        "R12",
+        "R13",
+        "R21",
+        "R22",
+        "R23",
+        "R31",
+        "R32",
+        "R33",
+        "Pi1",
+        "Pi2",
+        "Pi3",
+        "energy",
+        "momentum_x",
+        "momentum_y",
+        "momentum_z",
+    ] {
+        assert!(header.contains(&name), "no column {name} in {header:?}");
+    }
+    assert_eq!(header.len(), 17);
+    assert_eq!(unreduced.column("t").len(), 51);
+    let s = &unreduced.summary;
+    assert_eq!(s["system"], "rigid_body");
+    assert_eq!(s["symmetry"], "SO(3)");
+    assert!(s["casimir"]["max_relative_drift"].as_f64().unwrap() < 1e-13);
+    assert!(s["momentum_map"]["max_relative_drift"].as_f64().unwrap() < 1e-13);
+    assert!(s["orthogonality"].as_f64().unwrap() < 1e-14);
+    assert!(s["warnings"].as_array().unwrap().is_empty());
+    // The trajectory's last row is the summary's final state.
+    let last = |name: &str| *unreduced.column(name).last().unwrap();
+    assert_eq!(last("R23"), state.0[1][2]);
+    assert_eq!(last("Pi2"), state.1[1]);
+
+    let dir = TempDir::new("rigid-free-reduced");
+    let reduced = succeed(&spec, &["method.reduced=true"], &dir);
+    let other = final_state(&reduced.summary);
+    assert!(distance(&state, &other) < 1e-12, "reduced and unreduced differ by {:e}", distance(&state, &other));
+    assert_eq!(reduced.summary["method"]["reduced"], true);
+}
+
+#[test]
+fn a_heavy_top_follows_eulers_equations_and_keeps_its_vertical_momentum() {
+    let dir = TempDir::new("rigid-heavy");
+    let spec = dir.file("heavy.toml", &heavy());
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    let r0 = [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]];
+    let reference = euler_rk4([1.0, 1.3, 0.4], [0.05 * 9.8, 0.0, 0.5 * 9.8], r0, [0.3, -0.2, 1.5], 3.0, 60_000);
+    let run = succeed(&spec, &[], &dir);
+    let state = final_state(&run.summary);
+    assert!(distance(&state, &reference) < 1e-6, "off by {:e}", distance(&state, &reference));
+    assert_eq!(run.summary["symmetry"], "vertical");
+    assert_eq!(run.summary["momentum_map"]["conserved"], serde_json::json!(["z"]));
+    let z = run.column("momentum_z");
+    let spread = z.iter().map(|v| (v - z[0]).abs()).fold(0.0, f64::max);
+    assert!(spread < 1e-13, "e3 · R Π moved by {spread:e}");
+    // The horizontal components are not conserved: gravity turns them.
+    let x = run.column("momentum_x");
+    assert!(x.iter().map(|v| (v - x[0]).abs()).fold(0.0, f64::max) > 1e-2);
+    // Reduction by all of SO(3) is refused, pointing at the key.
+    let dir = TempDir::new("rigid-heavy-reduced");
+    let output = common::run(&spec, &["method.reduced=true"], &dir);
+    assert_fails(
+        &output,
+        &dir,
+        &["reduction by SO(3) needs a Lagrangian invariant under every rotation", "reduced = true"],
+    );
+    assert_eq!(output.status.code(), Some(2));
+}
+
+#[test]
+fn npy_files_hold_the_same_columns() {
+    let dir = TempDir::new("rigid-npy");
+    let spec = dir.file("free.toml", FREE);
+    let output = run(&spec, &["output.format=[\"csv\", \"npy\"]"], &dir);
+    assert!(output.status.success(), "{}", common::stderr(&output));
+    for name in ["R11", "R33", "Pi1", "Pi3", "energy", "momentum_z", "t"] {
+        let bytes = std::fs::read(dir.out().join("npy").join(format!("{name}.npy"))).unwrap();
+        // 51 rows of f64 after a 128-byte header.
+        assert_eq!(bytes.len(), 128 + 51 * 8, "{name}.npy");
+    }
+}
+
+/// Runs FREE with the `--set` overrides, which must be refused (exit 2) naming every needle.
+fn refused(sets: &[&str], needles: &[&str]) {
+    let dir = TempDir::new("rigid-refused");
+    let spec = dir.file("free.toml", FREE);
+    let output = run(&spec, sets, &dir);
+    assert_fails(&output, &dir, needles);
+    assert_eq!(output.status.code(), Some(2), "{sets:?}");
+}
+
+#[test]
+fn wrong_attitudes_are_refused() {
+    refused(&["initial.R=[[1, 0.1, 0], [0, 1, 0], [0, 0, 1]]"], &["not a rotation", "|RᵀR − I| is 1.00e-1"]);
+    refused(&["initial.R=[[-1, 0, 0], [0, 1, 0], [0, 0, 1]]"], &["not a rotation", "det R = -1"]);
+    refused(&["initial.R=[[1, 0, 0], [0, 1, 0]]"], &["`initial.R` has 2 rows"]);
+    refused(&["initial.R=[[1, 0, 0, 0], [0, 1, 0], [0, 0, 1]]"], &["row 1 of `initial.R` has 4 entries"]);
+    refused(&["initial.R=[[1, 0, 0], [0, nan, 0], [0, 0, 1]]"], &["entry 2 of row 2 of `initial.R` is not finite"]);
+    refused(&["initial.R=[[0, 0, 0], [0, 0, 0], [0, 0, 0]]"], &["not a rotation"]);
+    // 5e-12 off: over the 1e-12 the attitude is held to.
+    refused(&["initial.R=[[1.000000000005, 0, 0], [0, 1, 0], [0, 0, 1]]"], &["not a rotation"]);
+}
+
+#[test]
+fn a_rotation_written_to_full_precision_and_one_within_the_tolerance_are_taken() {
+    let dir = TempDir::new("rigid-near");
+    let spec = dir.file("free.toml", FREE);
+    let (c, s) = (1.2f64.cos(), 1.2f64.sin());
+    let rotation = format!("initial.R=[[{c:?}, {:?}, 0], [{s:?}, {c:?}, 0], [0, 0, 1]]", -s);
+    succeed(&spec, &[&rotation], &dir);
+    let dir = TempDir::new("rigid-near-2");
+    succeed(&spec, &["initial.R=[[1.0000000000002, 0, 0], [0, 1, 0], [0, 0, 1]]"], &dir);
+}
+
+#[test]
+fn wrong_initial_velocities_and_momenta_are_refused() {
+    refused(&["initial.Pi=[1, 2, 3]"], &["`initial.Pi` and `initial.Omega` are both given"]);
+    refused(&["initial.Omega=[1, 2]"], &["initial.Omega has 2 entries"]);
+    refused(&["initial.Omega=[1, inf, 0]"], &["entry 2 of initial.Omega is not finite"]);
+    refused(&["initial.Omega=[1e200, 0, 0]"], &["overflows"]);
+    refused(&["initial.q=[0]"], &["a rigid body takes no `initial.q`"]);
+    refused(&["initial.q.x=1"], &["a rigid body has no coordinates to set one by one"]);
+}
+
+#[test]
+fn a_spec_without_pi_or_omega_or_r_is_refused() {
+    let dir = TempDir::new("rigid-missing");
+    let spec = dir.file("free.toml", &FREE.replace("Omega = [0.01, 2.0, 0.01]\n", ""));
+    assert_fails(&run(&spec, &[], &dir), &dir, &["neither `initial.Pi` nor `initial.Omega` is given"]);
+    let spec = dir.file("free2.toml", &FREE.replace("R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n", ""));
+    assert_fails(&run(&spec, &[], &dir), &dir, &["`initial.R` is missing"]);
+}
+
+#[test]
+fn keys_without_meaning_on_so3_are_refused() {
+    refused(&["method.variant=minus"], &["no (+)/(−) choice"]);
+    refused(&["method.connection=[[0]]"], &["a rigid body takes no `method.connection`"]);
+    refused(&["method.atlas=true"], &["a rigid body takes no `method.atlas`"]);
+    refused(&["method.derivatives=compiled"], &["compiled derivatives are not available for rigid bodies"]);
+    refused(&["output.wrap_angles=true"], &["a rigid body takes no `output.wrap_angles`"]);
+    refused(&["method.order=4", "method.rule=left"], &["order"]);
+    refused(&["parameters.I4=1"], &["invalid parameter `I4`: unknown", "unknown parameter"]);
+    refused(&["parameters.I1=0"], &["must be positive"]);
+    refused(&["parameters.I2=-1"], &["must be positive"]);
+    refused(&["parameters.m=nan"], &["parameter `m` is not finite"]);
+}
+
+#[test]
+fn a_step_that_does_not_resolve_the_rotation_warns() {
+    let dir = TempDir::new("rigid-coarse");
+    let spec = dir.file("free.toml", FREE);
+    let run = succeed(&spec, &["initial.Omega=[0.01, 300, 0.01]", "method.order=2"], &dir);
+    let kinds: Vec<&str> =
+        run.summary["warnings"].as_array().unwrap().iter().map(|w| w["kind"].as_str().unwrap()).collect();
+    assert!(kinds.contains(&"under_resolved"), "{kinds:?}");
+    // A body at rest stays at rest, with nothing to warn of.
+    let dir = TempDir::new("rigid-rest");
+    let run = succeed(&spec, &["initial.Omega=[0, 0, 0]"], &dir);
+    assert_eq!(final_state(&run.summary).0, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    assert!(run.summary["warnings"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
+    let dir = TempDir::new("rigid-check");
+    let spec = dir.file("free.toml", FREE);
+    let output = common::check(&spec, &[], &dir);
+    assert_fails(&output, &dir, &["this command does not take the rigid body yet", "`ddirac run` runs `rigid_body`"]);
+    // And a system in coordinates refuses the rigid body's keys.
+    let spec = dir.file(
+        "kepler.toml",
+        &std::fs::read_to_string(common::example("kepler.toml"))
+            .unwrap()
+            .replace("[initial]", "[initial]\nPi = [0, 0, 1]"),
+    );
+    let output = run(&spec, &[], &dir);
+    assert_fails(&output, &dir, &["`initial.Pi` belongs to a rigid body"]);
+}
