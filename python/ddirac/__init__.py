@@ -29,17 +29,19 @@ from .system import System, builtin_systems
 from .convergence import ConvergenceTable, convergence
 from .ensembles import EnsembleResult, ensemble
 from .run import Run, check, simulate
+from .rigid import RigidBody, RigidRun
 from .run_warnings import (
     EnergyDriftWarning, EnergyJumpWarning, InvarianceUndecidedWarning, LooseToleranceWarning,
-    NewtonFallbackWarning, NotInvariantWarning, RunWarning, SingularChartWarning, SubdividedWarning,
-    UnderResolvedWarning,
+    NewtonFallbackWarning, NoEnergyWarning, NotInvariantWarning, RunWarning, SingularChartWarning,
+    SubdividedWarning, UnderResolvedWarning,
 )
 from .spec import Spec, load
 
 __all__ = [
     "ConvergenceError", "ConvergenceTable", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run",
+    "RigidBody", "RigidRun",
     "Spec", "SpecError", "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
     "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
-    "LooseToleranceWarning", "NewtonFallbackWarning", "NotInvariantWarning", "SingularChartWarning",
+    "LooseToleranceWarning", "NewtonFallbackWarning", "NoEnergyWarning", "NotInvariantWarning", "SingularChartWarning",
     "SubdividedWarning", "UnderResolvedWarning",
 ]

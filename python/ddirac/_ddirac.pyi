@@ -28,6 +28,11 @@ class SystemHandle:
     @property
     def coordinates(self) -> list[tuple[str, str, str]]: ...
 
+class RigidHandle:
+    name: str
+    parameters: list[tuple[str, float]]
+    symmetry: str
+
 class LoadedSpec:
     name: str
     parameters: list[tuple[str, float]]
@@ -63,6 +68,13 @@ def simulate(
     progress: Optional[Callable[[int], None]] = None,
 ) -> dict[str, Any]: ...
 def check(system: SystemHandle, run_args: dict[str, Any]) -> dict[str, Any]: ...
+def rigid_body(parameters: Sequence[tuple[str, float]]) -> RigidHandle: ...
+def simulate_rigid(
+    handle: RigidHandle,
+    run_args: dict[str, Any],
+    every: int,
+    progress: Optional[Callable[[int], None]] = None,
+) -> dict[str, Any]: ...
 def method_keys() -> list[str]: ...
 def convergence_stability(orders: Sequence[Optional[float]]) -> Optional[tuple[int, int, float]]: ...
 STABLE: float

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union, overload
 
 import numpy as np
 
@@ -14,6 +14,8 @@ from .system import System
 if TYPE_CHECKING:  # optional: imported by the methods that need them
     import pandas
     import xarray
+
+    from .rigid import RigidBody, RigidRun
 
 #: Initial data: a sequence in the order of ``system.coordinates``, or a mapping by coordinate (a name,
 #: a SymPy symbol or dynamicsymbol; for velocities also the derivative ``q(t).diff(t)``).
@@ -104,10 +106,30 @@ class Run:
         return pandas.DataFrame(self.columns())
 
 
-def simulate(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+@overload
+def simulate(system: RigidBody, q0: None = None, p0: None = None, v0: None = None,
              step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
              rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
-             wrap_angles: bool = False, progress: ProgressArgument = None, **method: Any) -> Run:
+             wrap_angles: bool = False, progress: ProgressArgument = None, *, R0: Any,
+             Pi0: Optional[Sequence[float]] = None, Omega0: Optional[Sequence[float]] = None,
+             **method: Any) -> RigidRun: ...
+
+
+@overload
+def simulate(system: System, q0: Optional[Vector] = None, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+             step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
+             rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
+             wrap_angles: bool = False, progress: ProgressArgument = None, *, R0: Any = None,
+             Pi0: Optional[Sequence[float]] = None, Omega0: Optional[Sequence[float]] = None,
+             **method: Any) -> Run: ...
+
+
+def simulate(system: System, q0: Optional[Vector] = None, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
+             step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
+             rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
+             wrap_angles: bool = False, progress: ProgressArgument = None, *, R0: Any = None,
+             Pi0: Optional[Sequence[float]] = None, Omega0: Optional[Sequence[float]] = None,
+             **method: Any) -> Run:
     """Integrates ``system`` from ``q0`` with momenta ``p0`` or velocities ``v0``.
 
     Give two of ``step``, ``steps`` and ``duration`` (all three must agree). ``q0``, ``p0`` and
@@ -132,9 +154,33 @@ def simulate(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Option
 
     The run's warnings (``summary["warnings"]``) are also emitted as :class:`ddirac.RunWarning`
     subclasses, one per kind (``warnings.simplefilter("error", ddirac.RunWarning)`` makes them errors).
+
+    A rigid body (``System.builtin("rigid_body", ...)``, a :class:`ddirac.RigidBody`) starts from the
+    attitude ``R0`` (3 × 3, body to space: a rotation to 1e-12) with the body angular momentum ``Pi0``
+    or the body angular velocity ``Omega0``, and returns a :class:`ddirac.RigidRun` (``run.R`` of shape
+    (rows, 3, 3), ``run.Pi`` (rows, 3)); ``reduced=True`` runs the reduced equations of a body invariant
+    under every rotation (a heavy body is refused). ``variant``, ``connection``, ``atlas`` and
+    ``wrap_angles`` have no meaning on SO(3).
     """
-    result = _simulate(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, every, wrap_angles,
-                       progress, **method)
+    from .rigid import RigidBody, simulate_rigid
+
+    if isinstance(system, RigidBody):
+        if q0 is not None or p0 is not None or v0 is not None:
+            raise _ddirac.Error("a rigid body has no coordinates: give `R0` and one of `Pi0`, `Omega0`, "
+                                "not `q0`, `p0`, `v0`")
+        if wrap_angles:
+            raise _ddirac.Error("`wrap_angles` has no meaning for a rigid body: its attitude is the matrix R")
+        keys = _method_keys(rule, variant, reduced, method)
+        result: Run = simulate_rigid(system, R0, Pi0, Omega0, step, steps, duration, every, keys, progress)
+    else:
+        if R0 is not None or Pi0 is not None or Omega0 is not None:
+            raise _ddirac.Error(f"`R0`, `Pi0` and `Omega0` are the initial data of a rigid body; "
+                                f"{system.name!r} has coordinates: give `q0` and one of `p0`, `v0`")
+        if q0 is None:
+            raise _ddirac.Error("`q0` is missing: the initial configuration, one number per coordinate "
+                                f"({', '.join(system.coordinates)}), or a dict by coordinate")
+        result = _simulate(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, every, wrap_angles,
+                           progress, **method)
     warn_run(result.summary["warnings"])
     return result
 
@@ -171,8 +217,8 @@ def check(system: System, q0: Vector, p0: Optional[Vector] = None, v0: Optional[
     go (``runs``), the ``error`` it would fail with, or the ``warnings`` it would run with (each
     ``{kind, step, t, message, count}``, as in a run's summary; they are also emitted as
     :class:`ddirac.RunWarning` subclasses)."""
-    report = _ddirac.check(system._handle, _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced,
-                                                    method))
+    args = _prepare(system, q0, p0, v0, step, steps, duration, rule, variant, reduced, method)
+    report = _ddirac.check(system._handle, args)
     warn_run(report["verdict"]["warnings"], what="a run with these arguments would warn")
     return report
 
@@ -183,10 +229,25 @@ def _prepare(system: System, q0: Vector, p0: Optional[Vector], v0: Optional[Vect
     """The arguments of a run as the dict the module takes: ``q0``, ``p0``, ``v0``, ``step``, ``steps``
     and the ``method`` keys. The module checks them by the rules a spec file's keys follow; here they
     only become plain numbers, strings and lists."""
+    from .rigid import RigidBody
     from .system import System
 
     if not isinstance(system, System):
         raise _ddirac.Error(f"`system` must be a ddirac.System, not {type(system).__name__}")
+    if isinstance(system, RigidBody):
+        raise _ddirac.Error("this function does not take rigid bodies yet: `ddirac.simulate` runs them")
+    keys = _method_keys(rule, variant, reduced, method)
+    names = system.coordinates
+    h, n = _ddirac.time_grid(None if step is None else float(step), None if steps is None else _whole(steps, "steps"),
+                             None if duration is None else float(duration))
+    return {"q0": _vector(q0, names, "q0"), "p0": None if p0 is None else _vector(p0, names, "p0"),
+            "v0": None if v0 is None else _vector(v0, names, "v0", velocities=True), "step": h, "steps": n, "duration": None,
+            "method": keys}
+
+
+def _method_keys(rule: str, variant: str, reduced: bool, method: Mapping[str, Any]) -> dict[str, Any]:
+    """The method keys as the module takes them: plain numbers, strings and lists, checked there by
+    the rules of a spec's ``[method]`` table."""
     keys = dict(method)
     if "reuse_jacobian" in keys:  # `jacobian = "reuse"` or `"fresh"` as a boolean
         if "jacobian" in keys:
@@ -203,12 +264,7 @@ def _prepare(system: System, q0: Vector, p0: Optional[Vector], v0: Optional[Vect
             keys[key] = _whole(keys[key], key)
     if keys.get("connection") is not None:
         keys["connection"] = np.atleast_2d(np.asarray(keys["connection"], dtype=float)).tolist()
-    names = system.coordinates
-    h, n = _ddirac.time_grid(None if step is None else float(step), None if steps is None else _whole(steps, "steps"),
-                             None if duration is None else float(duration))
-    return {"q0": _vector(q0, names, "q0"), "p0": None if p0 is None else _vector(p0, names, "p0"),
-            "v0": None if v0 is None else _vector(v0, names, "v0", velocities=True), "step": h, "steps": n, "duration": None,
-            "method": keys}
+    return keys
 
 
 def _vector(values: Vector, names: list[str], what: str, velocities: bool = False) -> Any:

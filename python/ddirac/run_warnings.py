@@ -63,7 +63,8 @@ class NewtonFallbackWarning(RunWarning):
 
 class UnderResolvedWarning(RunWarning):
     """``under_resolved``: an angle turned by more than 1 rad in one step where the Legendre map is
-    regular: the step does not resolve the motion."""
+    regular, or a rigid body turned by more than 1 rad in one step: the step does not resolve the
+    motion."""
 
 
 class SingularChartWarning(RunWarning):
@@ -85,6 +86,11 @@ class LooseToleranceWarning(RunWarning):
     truncation error; the result may be no more accurate than the tolerance allows."""
 
 
+class NoEnergyWarning(RunWarning):
+    """``no_energy``: a rigid body whose Lagrangian is degenerate in its velocities at the initial data:
+    the energy is not reported (NaN); the motion itself is computed."""
+
+
 
 #: The class of each kind, by the name ``summary.json`` gives it.
 KINDS: dict[str, type[RunWarning]] = {
@@ -97,6 +103,7 @@ KINDS: dict[str, type[RunWarning]] = {
     "energy_drift": EnergyDriftWarning,
     "subdivided": SubdividedWarning,
     "loose_tolerance": LooseToleranceWarning,
+    "no_energy": NoEnergyWarning,
 }
 
 # The package's directory: frames of files in it are skipped, so that a warning points at the user's call.

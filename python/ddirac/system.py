@@ -72,7 +72,12 @@ class System:
     @classmethod
     def builtin(cls, name: str, **parameters: float) -> System:
         """The built-in system ``name`` with some parameters overridden, e.g.
-        ``System.builtin("pendulum_chain", links=8)``."""
+        ``System.builtin("pendulum_chain", links=8)``; ``System.builtin("rigid_body", ...)`` is a
+        :class:`ddirac.RigidBody`."""
+        if str(name) == "rigid_body":
+            from .rigid import RigidBody
+
+            return RigidBody(**parameters)
         system = cls.__new__(cls)
         overrides = [(str(k), _number(v, f"parameter `{k}`")) for k, v in parameters.items()]
         system._handle = _ddirac.builtin_system(str(name), overrides)
@@ -114,7 +119,10 @@ class System:
 
 def builtin_systems() -> dict[str, str]:
     """The built-in systems: name → one-line description."""
-    return dict(_ddirac.builtin_names())
+    names = dict(_ddirac.builtin_names())
+    names["rigid_body"] = ("a rigid body on SO(3) about a fixed point in gravity (a free body when m·g·|c| = 0): "
+                           "ddirac.simulate(body, R0=..., Pi0=... or Omega0=...)")
+    return names
 
 
 def is_sympy(value: Any) -> bool:

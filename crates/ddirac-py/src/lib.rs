@@ -8,6 +8,7 @@ mod check;
 mod ensemble;
 mod error;
 mod overhead;
+mod rigid;
 mod simulate;
 mod spec;
 mod system;
@@ -24,6 +25,9 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InvarianceError", py.get_type::<error::InvarianceError>())?;
     m.add("ConvergenceError", py.get_type::<error::ConvergenceError>())?;
     m.add_class::<system::SystemHandle>()?;
+    m.add_class::<rigid::RigidHandle>()?;
+    m.add_function(wrap_pyfunction!(rigid::rigid_body, m)?)?;
+    m.add_function(wrap_pyfunction!(rigid::simulate_rigid, m)?)?;
     m.add_function(wrap_pyfunction!(system::builtin_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::text_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::builtin_names, m)?)?;

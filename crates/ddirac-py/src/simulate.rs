@@ -19,7 +19,7 @@ use ddirac_cli::report::{summary_json_of, RunRecord};
 
 /// The method keys of a run as the Python package passes them: a dict with the keys of a spec's
 /// `[method]` table that were given ([`MethodKey::ALL`]), read into [`MethodKeys`].
-pub(crate) struct MethodArgs(MethodKeys);
+pub(crate) struct MethodArgs(pub(crate) MethodKeys);
 
 impl<'a, 'py> FromPyObject<'a, 'py> for MethodArgs {
     type Error = PyErr;

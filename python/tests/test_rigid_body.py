@@ -1,0 +1,137 @@
+"""Rigid bodies from Python: ``System.builtin("rigid_body")``, ``simulate(body, R0=..., Pi0=.../Omega0=...)``
+with ``run.R`` (rows, 3, 3) and ``run.Pi`` (rows, 3), checked against Euler's equations integrated here
+by RK4, the reduced run against the unreduced one, the command line's run of the same spec, and every
+wrong input refused with a message naming it."""
+
+import json
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+import ddirac
+from command_line import built
+
+
+def euler_rk4(inertia, mgc, R0, Pi0, T, n):
+    """Π̇ = Π × Ω + Γ × (m g c), Γ = Rᵀ e3, Ṙ = R Ω̂, by RK4 with n steps."""
+    inertia, mgc = np.asarray(inertia, float), np.asarray(mgc, float)
+
+    def field(R, Pi):
+        omega = Pi / inertia
+        hat = np.array([[0, -omega[2], omega[1]], [omega[2], 0, -omega[0]], [-omega[1], omega[0], 0]])
+        return R @ hat, np.cross(Pi, omega) + np.cross(R[2], mgc)
+
+    h = T / n
+    R, Pi = np.array(R0, float), np.array(Pi0, float)
+    for _ in range(n):
+        k1 = field(R, Pi)
+        k2 = field(R + h / 2 * k1[0], Pi + h / 2 * k1[1])
+        k3 = field(R + h / 2 * k2[0], Pi + h / 2 * k2[1])
+        k4 = field(R + h * k3[0], Pi + h * k3[1])
+        R = R + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+        Pi = Pi + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+    return R, Pi
+
+
+def tilted(angle):
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def test_a_free_body_follows_eulers_equations_and_reduces():
+    body = ddirac.System.builtin("rigid_body", I1=1.0, I2=2.0, I3=3.0, m=0.0)
+    assert isinstance(body, ddirac.RigidBody) and isinstance(body, ddirac.System)
+    assert body.symmetry == "SO(3)" and body.parameters["I2"] == 2.0 and body.coordinates == []
+    run = ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 2.0, 0.01], step=0.01, duration=5.0, order=4, every=10)
+    assert isinstance(run, ddirac.RigidRun)
+    assert run.R.shape == (51, 3, 3) and run.Pi.shape == (51, 3) and run.momentum_map.shape == (51, 3)
+    R, Pi = euler_rk4([1, 2, 3], [0, 0, 0], np.eye(3), [0.01, 4.0, 0.03], 5.0, 20_000)
+    assert np.abs(run.R[-1] - R).max() < 1e-6 and np.abs(run.Pi[-1] - Pi).max() < 1e-6
+    # R stays a rotation; R Π and |Π| are kept to round-off.
+    assert np.abs(np.einsum("kji,kjl->kil", run.R, run.R) - np.eye(3)).max() < 1e-14
+    assert np.abs(run.momentum_map - run.momentum_map[0]).max() < 1e-13
+    assert np.allclose(run.momentum_map, np.einsum("kij,kj->ki", run.R, run.Pi), atol=1e-14)
+    assert np.abs(np.linalg.norm(run.Pi, axis=1) / np.linalg.norm(run.Pi[0]) - 1).max() < 1e-13
+    assert run.summary["final"]["R"] == run.R[-1].tolist() and run.summary["final"]["Pi"] == run.Pi[-1].tolist()
+    reduced = ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 2.0, 0.01], step=0.01, duration=5.0, order=4,
+                              every=10, reduced=True)
+    assert np.abs(reduced.R - run.R).max() < 1e-12 and np.abs(reduced.Pi - run.Pi).max() < 1e-12
+    assert reduced.summary["method"]["reduced"] is True
+
+
+def test_a_heavy_top_follows_eulers_equations_and_refuses_reduction():
+    body = ddirac.System.builtin("rigid_body", I1=1.0, I2=1.3, I3=0.4, m=1.0, g=9.8, c1=0.05, c3=0.5)
+    assert body.symmetry == "vertical"
+    run = ddirac.simulate(body, R0=tilted(0.3), Pi0=[0.3, -0.2, 1.5], step=0.005, duration=3.0, order=4, every=20)
+    R, Pi = euler_rk4([1, 1.3, 0.4], [0.05 * 9.8, 0, 0.5 * 9.8], tilted(0.3), [0.3, -0.2, 1.5], 3.0, 30_000)
+    assert np.abs(run.R[-1] - R).max() < 1e-6 and np.abs(run.Pi[-1] - Pi).max() < 1e-6
+    assert np.abs(run.momentum_map[:, 2] - run.momentum_map[0, 2]).max() < 1e-13
+    with pytest.raises(ddirac.Error, match="reduction by SO\\(3\\) needs a Lagrangian invariant"):
+        ddirac.simulate(body, R0=np.eye(3), Pi0=[0, 0, 1], step=0.01, steps=10, reduced=True)
+
+
+def test_python_and_the_command_line_give_the_same_bits(tmp_path):
+    spec = tmp_path / "free.toml"
+    spec.write_text('system = "rigid_body"\n[parameters]\nI1 = 1.0\nI2 = 2.0\nI3 = 3.0\nm = 0.0\n'
+                    '[method]\norder = 6\n[time]\nstep = 0.02\nsteps = 300\n[initial]\n'
+                    'R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\nPi = [0.1, 2.0, 0.3]\n[output]\nevery = 7\n')
+    subprocess.run([built(), "run", str(spec), "--out", str(tmp_path / "out"), "--quiet"], check=True)
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    body = ddirac.System.builtin("rigid_body", I1=1.0, I2=2.0, I3=3.0, m=0.0)
+    run = ddirac.simulate(body, R0=np.eye(3), Pi0=[0.1, 2.0, 0.3], step=0.02, steps=300, order=6, every=7)
+    assert summary["final"]["R"] == run.summary["final"]["R"] and summary["final"]["Pi"] == run.summary["final"]["Pi"]
+    header = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()[0].split(",")
+    assert header == list(run.columns())
+    assert len(run) == 44  # rows 0, 7, ..., 294 and the last
+
+
+def test_wrong_inputs_are_refused_naming_them():
+    body = ddirac.System.builtin("rigid_body", m=0.0)
+    grid = dict(step=0.01, steps=10)
+    cases = [
+        (dict(R0=[[1, 0.1, 0], [0, 1, 0], [0, 0, 1]], Pi0=[0, 1, 0]), "not a rotation"),
+        (dict(R0=np.diag([-1.0, 1.0, 1.0]), Pi0=[0, 1, 0]), "det R = -1"),
+        (dict(R0=np.eye(2), Pi0=[0, 1, 0]), "`R0` must be a 3 × 3 rotation"),
+        (dict(R0=np.eye(3), Pi0=[0, 1]), "`Pi0` must be 3 numbers"),
+        (dict(R0=np.eye(3), Pi0=[0, 1, 0], Omega0=[0, 1, 0]), "not both"),
+        (dict(R0=np.eye(3)), "give the body angular momentum `Pi0` or the body angular velocity `Omega0`"),
+        (dict(Pi0=[0, 1, 0]), "needs `R0`"),
+        (dict(R0=np.eye(3), Omega0=[0, np.nan, 0]), "not finite"),
+        (dict(R0=np.eye(3), Omega0=[1e200, 0, 0]), "overflows"),
+        (dict(R0=np.eye(3), Omega0=[0, 1, 0], variant="minus"), "no \\(\\+\\)/\\(−\\) choice"),
+        (dict(R0=np.eye(3), Omega0=[0, 1, 0], connection=[[0.0]]), "takes no `connection`"),
+        (dict(R0=np.eye(3), Omega0=[0, 1, 0], atlas=False), "takes no `atlas`"),
+        (dict(R0=np.eye(3), Omega0=[0, 1, 0], order=4, rule="left"), "order"),
+        (dict(R0=np.eye(3), Omega0=[0, 1, 0], wrap_angles=True), "`wrap_angles` has no meaning"),
+        (dict(q0=[0.0], R0=np.eye(3), Omega0=[0, 1, 0]), "has no coordinates"),
+    ]
+    for arguments, message in cases:
+        with pytest.raises(ddirac.Error, match=message):
+            ddirac.simulate(body, **{**grid, **arguments})
+    with pytest.raises(ddirac.Error, match="positive"):
+        ddirac.System.builtin("rigid_body", I1=0.0)
+    with pytest.raises(ddirac.Error, match="unknown"):
+        ddirac.System.builtin("rigid_body", I4=1.0)
+    with pytest.raises(ddirac.Error, match="does not take rigid bodies yet"):
+        ddirac.check(body, q0=[], step=0.01, steps=10)
+    kepler = ddirac.System.builtin("kepler")
+    with pytest.raises(ddirac.Error, match="initial data of a rigid body"):
+        ddirac.simulate(kepler, R0=np.eye(3), Pi0=[0, 0, 1], step=0.01, steps=10)
+    with pytest.raises(ddirac.Error, match="`q0` is missing"):
+        ddirac.simulate(kepler, step=0.01, steps=10)
+
+
+def test_a_step_that_does_not_resolve_the_rotation_warns():
+    body = ddirac.System.builtin("rigid_body", m=0.0)
+    with pytest.warns(ddirac.UnderResolvedWarning, match="turned by"):
+        run = ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 300.0, 0.01], step=0.01, steps=100)
+    assert [w["kind"] for w in run.summary["warnings"]] == ["under_resolved"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ddirac.RunWarning)
+        ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 3.0, 0.01], step=0.01, steps=100)
+
+
+def test_builtin_systems_lists_the_rigid_body():
+    assert "rigid_body" in ddirac.builtin_systems()
