@@ -28,7 +28,11 @@ pub struct CheckOptions {
 
 /// Checks a spec, prints the report, and fails when a run would be refused.
 pub fn check(options: &CheckOptions) -> Result<(), CliError> {
-    let loaded = run::load(&options.spec, &options.set)?;
+    let spec_text = run::read(&options.spec)?;
+    if crate::rigid::names_rigid_body(&spec_text, &options.set) {
+        return crate::rigid::check::check(&options.spec, &options.set, spec_text);
+    }
+    let loaded = run::load_text(&options.spec, spec_text, &options.set)?;
     loaded.print_notes();
     let Loaded { source, plan, .. } = loaded;
     let located = |error: ddirac::Error| match plan.spans.diagnostic(&source, &error) {

@@ -277,5 +277,15 @@ fn systems() -> String {
         let parameters: Vec<String> = (system.defaults)().iter().map(|(n, v)| format!("{n} = {v}")).collect();
         text.push_str(&format!("    parameters:  {}\n\n", parameters.join(", ")));
     }
+    let body = ddirac::systems::RigidBody::default_parameters();
+    let parameters: Vec<String> =
+        ddirac::systems::Parameters::parameters(&body).iter().map(|(n, v)| format!("{n} = {v}")).collect();
+    text.push_str(&format!(
+        "{}\n    a rigid body on SO(3) about a fixed point in gravity −g e3, centre of mass c in the body (a free \
+         body when m·g·|c| = 0)\n    configuration: the attitude R (initial.R, body to space), with initial.Pi or \
+         initial.Omega\n    parameters:  {}\n\n",
+        ddirac_cli::rigid::NAME,
+        parameters.join(", ")
+    ));
     text
 }

@@ -35,7 +35,14 @@ pub fn run(options: &RunOptions) -> Result<(), CliError> {
     let path = &options.spec;
     let text = read(path)?;
     if crate::rigid::names_rigid_body(&text, &options.set) {
-        return crate::rigid::run(options, text, started);
+        let request = crate::rigid::Request {
+            spec: path,
+            set: &options.set,
+            out: options.out.as_deref(),
+            quiet: options.quiet,
+            format: &options.format,
+        };
+        return crate::rigid::run(&request, text, started);
     }
     let loaded = load_text(path, text, &options.set)?;
     loaded.print_notes();

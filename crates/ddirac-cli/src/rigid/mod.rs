@@ -4,6 +4,7 @@
 //! `Pi1` … `Pi3`, `energy`, `momentum_x` … `momentum_z` (the spatial angular momentum R Π), the same
 //! columns as `npy/<column>.npy`, and `summary.json` with `final.R` (three rows) and `final.Pi`.
 
+pub mod check;
 pub mod plan;
 pub mod report;
 
@@ -15,14 +16,26 @@ use ddirac::rigid::RigidStepper;
 use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
 use crate::progress::Progress;
-use crate::run::RunOptions;
 use crate::run_dir::RunDir;
 use crate::{estimate, initial_entries, lock, overrides, signals, spec};
 
 pub use plan::RigidPlan;
 
-/// The name of the built-in rigid body in specs.
-pub const NAME: &str = "rigid_body";
+pub use crate::spec::RIGID_BODY as NAME;
+
+/// What `ddirac run` (and `check`) was asked, for a rigid body's spec.
+pub struct Request<'a> {
+    /// The spec file.
+    pub spec: &'a Path,
+    /// `--set KEY=VALUE` arguments, in order.
+    pub set: &'a [String],
+    /// `--out`.
+    pub out: Option<&'a Path>,
+    /// `--quiet`.
+    pub quiet: bool,
+    /// `--format` (empty: `output.format` of the spec, else CSV).
+    pub format: &'a [output::Format],
+}
 
 /// Whether the spec text, with the `--set` assignments `set` applied, names the rigid body
 /// (`system = "rigid_body"`). A text that does not parse does not: its run reports the error.
@@ -71,26 +84,26 @@ pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<LoadedRigi
 }
 
 /// `ddirac run` of a rigid body's spec whose text is `text`.
-pub fn run(options: &RunOptions, text: String, started: Instant) -> Result<(), CliError> {
-    let LoadedRigid { source, spec, plan } = load_text(&options.spec, text, &options.set)?;
-    let formats = output::Formats::choose(&options.format, spec.output.format.as_ref(), &source)?;
-    let dir = match (&options.out, &plan.directory) {
-        (Some(out), _) => out.clone(),
+pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), CliError> {
+    let LoadedRigid { source, spec, plan } = load_text(request.spec, text, request.set)?;
+    let formats = output::Formats::choose(request.format, spec.output.format.as_ref(), &source)?;
+    let dir = match (request.out, &plan.directory) {
+        (Some(out), _) => out.to_owned(),
         (None, Some(d)) => PathBuf::from(d),
         (None, None) => {
-            let stem = options.spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            let stem = request.spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
             Path::new("out").join(stem)
         }
     };
     let columns = report::columns(&[]);
     let estimate = estimate::Estimate::of(plan.problem.steps, plan.every, columns.len(), formats);
     let grid = (plan.problem.steps, plan.every);
-    estimate::check_estimate(&source, &spec, estimate, grid, &dir, 1, options.quiet)?;
-    let mut progress = Progress::new(plan.problem.steps as u64, options.quiet);
-    let result = write_run(&source, &spec, &plan, &options.spec, &dir, formats, started, &mut progress);
+    estimate::check_estimate(&source, &spec, estimate, grid, &dir, 1, request.quiet)?;
+    let mut progress = Progress::new(plan.problem.steps as u64, request.quiet);
+    let result = write_run(&source, &spec, &plan, request.spec, &dir, formats, started, &mut progress);
     progress.finish();
     let text = result?;
-    if !options.quiet {
+    if !request.quiet {
         println!("{text}");
     }
     Ok(())

@@ -137,6 +137,8 @@ struct MomentumMapJson<'a> {
 struct CasimirJson {
     initial: f64,
     max_relative_drift: f64,
+    /// Whether the symmetry conserves |Π| (every rotation): else the drift is the motion's.
+    conserved: bool,
 }
 
 /// The content of `summary.json` of a rigid body's run of the spec file `spec`.
@@ -175,6 +177,7 @@ pub fn summary_json<'a>(
         casimir: CasimirJson {
             initial: summary.casimir.initial,
             max_relative_drift: summary.casimir.max_relative_drift,
+            conserved: summary.symmetry == ddirac::rigid::Symmetry::Rotations,
         },
         orthogonality: summary.orthogonality,
         newton: NewtonJson::new(&summary.newton),

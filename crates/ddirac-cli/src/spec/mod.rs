@@ -43,6 +43,10 @@ pub use validate::{validate, Plan, Spans};
 
 use crate::diagnostics::{SpecError, SpecSource};
 
+/// The name of the built-in rigid body in specs (`system = "rigid_body"`), which `ddirac run` and
+/// `ddirac check` take through [`crate::rigid`].
+pub const RIGID_BODY: &str = "rigid_body";
+
 /// A number as written in the spec.
 pub type Number = Spanned<f64>;
 /// A list of numbers as written in the spec.

@@ -44,7 +44,7 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
     // The span of each coordinate's name in a `[system]` table.
     let mut declared: Vec<(String, Range<usize>)> = vec![];
     let (name, system, parameters) = match spec.system.get_ref() {
-        SystemRef::BuiltIn(name) if name == crate::rigid::NAME => {
+        SystemRef::BuiltIn(name) if name == super::RIGID_BODY => {
             return Err(source
                 .error(Some(spec.system.span()), "this command does not take the rigid body yet", "a rigid body")
                 .with_help(

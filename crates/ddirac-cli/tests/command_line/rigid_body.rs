@@ -276,6 +276,15 @@ fn keys_without_meaning_on_so3_are_refused() {
 }
 
 #[test]
+fn systems_lists_the_rigid_body() {
+    let dir = TempDir::new("rigid-systems");
+    let output = common::ddirac(&["systems"], &dir.0);
+    let text = common::stdout(&output);
+    assert!(text.contains("rigid_body\n    a rigid body on SO(3)"), "{text}");
+    assert!(text.contains("parameters:  I1 = 1, I2 = 2, I3 = 3, m = 1, g = 9.81, c1 = 0, c2 = 0, c3 = 0.1"), "{text}");
+}
+
+#[test]
 fn a_step_that_does_not_resolve_the_rotation_warns() {
     let dir = TempDir::new("rigid-coarse");
     let spec = dir.file("free.toml", FREE);
@@ -291,10 +300,35 @@ fn a_step_that_does_not_resolve_the_rotation_warns() {
 }
 
 #[test]
-fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
+fn check_tests_the_declared_symmetry_and_gives_the_verdict_of_a_run() {
     let dir = TempDir::new("rigid-check");
     let spec = dir.file("free.toml", FREE);
-    let output = common::check(&spec, &[], &dir);
+    let output = common::check(&spec, &["method.reduced=true"], &dir);
+    assert!(output.status.success(), "{}", common::stderr(&output));
+    let report = common::stdout(&output);
+    assert!(common::line(&report, "symmetry").contains("SO(3), every rotation of space"), "{report}");
+    assert!(common::line(&report, "symmetry").ends_with("holds"), "{report}");
+    assert!(common::line(&report, "reduction").contains("by SO(3)"), "{report}");
+    // H0 = ½ Σ I_i Ω_i² = ½ (1e-4 + 8 + 3e-4) = 4.0002.
+    assert!(common::line(&report, "Legendre").contains("H0 = 4.0002000000e0"), "{report}");
+    assert!(common::line(&report, "verdict").ends_with("a run would be accepted"), "{report}");
+    let heavy = dir.file("heavy.toml", &heavy());
+    let output = common::check(&heavy, &["method.reduced=true"], &dir);
+    assert_eq!(output.status.code(), Some(2));
+    let report = common::stdout(&output);
+    assert!(common::line(&report, "symmetry").contains("rotations about the vertical e3"), "{report}");
+    assert!(common::line(&report, "reduction").contains("REFUSED"), "{report}");
+    assert!(common::line(&report, "verdict").ends_with("a run would be refused"), "{report}");
+    assert!(common::stderr(&output).contains("reduction by SO(3) needs a Lagrangian invariant"));
+    let output = common::check(&spec, &["initial.R=[[0, 1, 0], [1, 0, 0], [0, 0, 1]]"], &dir);
+    assert_fails(&output, &dir, &["not a rotation", "det R = -1"]);
+}
+
+#[test]
+fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
+    let dir = TempDir::new("rigid-convergence");
+    let spec = dir.file("free.toml", FREE);
+    let output = common::ddirac(&["convergence", &spec, "--steps", "10,20"], &dir.0);
     assert_fails(&output, &dir, &["this command does not take the rigid body yet", "`ddirac run` runs `rigid_body`"]);
     // And a system in coordinates refuses the rigid body's keys.
     let spec = dir.file(

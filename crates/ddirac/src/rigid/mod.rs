@@ -47,7 +47,7 @@ mod step;
 mod stepper;
 mod system;
 
-pub use invariance::INVARIANCE_TOLERANCE;
+pub use invariance::{test_symmetry, INVARIANCE_TOLERANCE};
 pub use problem::{RigidInitial, RigidProblem, ROTATION_TOLERANCE};
 pub use stepper::{Casimir, RigidRow, RigidStepper, RigidSummary};
 pub use system::{RigidSystem, Symmetry};

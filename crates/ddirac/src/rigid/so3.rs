@@ -1,7 +1,7 @@
 //! The rotation group SO(3) and its Lie algebra so(3) ≅ ℝ³, with the Cayley retraction that the
 //! discrete steps on the group use.
 //!
-//! Conventions (`docs/rigid-bodies.md`): a rotation R maps body to space; the hat map
+//! Conventions (`docs/systems/rigid-body.md`): a rotation R maps body to space; the hat map
 //! ξ̂ = [[0, −ξ3, ξ2], [ξ3, 0, −ξ1], [−ξ2, ξ1, 0]] (ξ̂ v = ξ × v) and vee its inverse; a step is
 //! R_{k+1} = R_k F_k with F_k = cay(ζ_k), where
 //!
