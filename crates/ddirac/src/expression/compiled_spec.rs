@@ -112,12 +112,53 @@ pub(super) fn compile(spec: &ExpressionSpec) -> Result<Compiled, ExpressionError
     Ok(Compiled { coordinates: spec.coordinates.clone(), lagrangian, open, exact: solutions, atlas })
 }
 
+/// The names of a rigid body's attitude in its Lagrangian: the entries `R11` … `R33` of R (body to
+/// space) and the body angular velocity `Omega1` … `Omega3`, in the order of the variables.
+pub const ATTITUDE_NAMES: [&str; 12] =
+    ["R11", "R12", "R13", "R21", "R22", "R23", "R31", "R32", "R33", "Omega1", "Omega2", "Omega3"];
+
+/// A rigid body's Lagrangian ℓ(R, Ω, s, ṡ) of the spec's Lagrangian, definitions and parameters: its
+/// variables are [`ATTITUDE_NAMES`], then the spec's coordinates (the shape s), then their velocities
+/// `<name>_dot`; the parameters are folded in.
+pub(crate) fn compile_rigid(spec: &ExpressionSpec) -> Result<CompiledExpression, ExpressionError> {
+    let attitude: Vec<(String, String)> = ATTITUDE_NAMES
+        .iter()
+        .map(|n| {
+            let what = if n.starts_with('R') { "an entry of the attitude R" } else { "the body angular velocity Ω" };
+            ((*n).to_owned(), format!("`{n}`, {what}"))
+        })
+        .collect();
+    check_names_with(spec, attitude)?;
+    let names = || spec.coordinates.iter().map(|c| c.name.clone());
+    let mut scope = Scope::new();
+    for name in ATTITUDE_NAMES.iter().map(|n| (*n).to_owned()).chain(names()).chain(names().map(|n| velocity(&n))) {
+        scope = scope.variable(&name);
+    }
+    scope = scope.unavailable("t", "a Lagrangian does not depend on time");
+    for &(name, value) in CONSTANTS {
+        scope = scope.constant(name, value);
+    }
+    for (name, value) in &spec.parameters {
+        scope = scope.constant(name, *value);
+    }
+    for (name, source) in &spec.definitions {
+        scope = scope.definition(name, source);
+    }
+    scope.compile(Origin::Lagrangian, &spec.lagrangian)
+}
+
 /// Checks that every declared name is an identifier, not a function or a constant, and declared once.
 fn check_names(spec: &ExpressionSpec) -> Result<(), ExpressionError> {
     if spec.coordinates.is_empty() {
         return Err(ExpressionError::NoCoordinates);
     }
+    check_names_with(spec, vec![])
+}
+
+/// [`check_names`] with the names `reserved` (name, what it is) declared before the spec's.
+fn check_names_with(spec: &ExpressionSpec, reserved: Vec<(String, String)>) -> Result<(), ExpressionError> {
     let mut declared: Vec<(String, String)> = vec![("t".into(), "the time `t` (reserved)".into())];
+    declared.extend(reserved);
     let mut declare = |name: &str, what: String, origin: Origin| {
         let invalid = |reason: &str| ExpressionError::InvalidName {
             origin: origin.clone(),

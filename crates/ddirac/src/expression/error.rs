@@ -287,6 +287,12 @@ pub enum ExpressionError {
     /// A system without coordinates.
     #[error("the system has no coordinates")]
     NoCoordinates,
+    /// A part of a spec that this kind of system does not take.
+    #[error("{what} are not taken")]
+    Unsupported {
+        /// What is not taken.
+        what: String,
+    },
     /// An atlas without the main chart's measure.
     #[error(
         "a system with charts says where its main chart is good: give `quality`, an expression in its coordinates"
@@ -350,6 +356,7 @@ impl ExpressionError {
             | ExpressionError::UnknownCoordinate { origin, .. }
             | ExpressionError::MissingMap { origin, .. } => Some(origin),
             ExpressionError::NoCoordinates
+            | ExpressionError::Unsupported { .. }
             | ExpressionError::MissingQuality
             | ExpressionError::ChartDimension { .. }
             | ExpressionError::Dimension { .. }

@@ -75,6 +75,8 @@ mod system;
 
 pub use ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use compiled_expression::CompiledExpression;
+pub(crate) use compiled_spec::compile_rigid;
+pub use compiled_spec::ATTITUDE_NAMES;
 pub use error::{CycleStep, ExpressionError, Origin, SyntaxError};
 pub use functions::{CONSTANTS, FUNCTIONS};
 pub use lagrangian::ExpressionLagrangian;

@@ -39,6 +39,7 @@
 //! ```
 
 mod discrete_lagrangian;
+mod expression_system;
 mod invariance;
 mod legendre;
 mod problem;
@@ -47,6 +48,7 @@ mod step;
 mod stepper;
 mod system;
 
+pub use expression_system::RigidExpressionSystem;
 pub use invariance::{test_symmetry, INVARIANCE_TOLERANCE};
 pub use problem::{RigidInitial, RigidProblem, ROTATION_TOLERANCE};
 pub use stepper::{Casimir, RigidRow, RigidStepper, RigidSummary};
