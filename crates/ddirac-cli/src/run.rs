@@ -213,7 +213,7 @@ pub fn write_run(
 }
 
 /// A figure that cannot be drawn in `dir`, as an output error naming the file.
-fn figure_error(dir: &Path, error: ToolError) -> CliError {
+pub(crate) fn figure_error(dir: &Path, error: ToolError) -> CliError {
     match error {
         ToolError::Write { path, source } => CliError::Output { path, source },
         other => CliError::Output { path: dir.to_owned(), source: std::io::Error::other(other) },
