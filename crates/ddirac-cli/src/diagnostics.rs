@@ -230,6 +230,14 @@ pub enum CliError {
 
 impl CliError {
     /// The exit status of this failure (see [`exit`]).
+    /// A figure that cannot be drawn in `dir`, as an output error naming the file.
+    pub fn figure(dir: &std::path::Path, error: crate::plot::ToolError) -> Self {
+        match error {
+            crate::plot::ToolError::Write { path, source } => Self::Output { path, source },
+            other => Self::Output { path: dir.to_owned(), source: std::io::Error::other(other) },
+        }
+    }
+
     pub fn exit_code(&self) -> u8 {
         match self {
             Self::Set { .. } | Self::Spec(_) | Self::Members { .. } | Self::Merge(_) => exit::SPEC,

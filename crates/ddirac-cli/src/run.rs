@@ -10,7 +10,6 @@ use ddirac::Role;
 use crate::diagnostics::{CliError, SpecSource};
 use crate::exact::ExactFile;
 use crate::output::{self, Trajectory};
-use crate::plot::ToolError;
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
 use crate::{estimate, initial_entries, lock, overrides, plot, report, signals, spec};
@@ -210,21 +209,13 @@ pub fn write_run(
     let mut text = report::human(plan, &summary, dir, total);
     let mut figures = 0;
     if plots {
-        let drawn = plot::plot_run(staging).map_err(|e| figure_error(dir, e))?;
+        let drawn = plot::plot_run(staging).map_err(|e| CliError::figure(dir, e))?;
         figures = drawn.len() / 2;
         files.extend(drawn.iter().filter_map(|p| p.strip_prefix(staging).ok()).map(Path::to_path_buf));
         text.push_str(&format!("\n  figures          {figures} (PNG and SVG)"));
     }
     run_dir.commit(&files)?;
     Ok(Finished { summary, text, figures })
-}
-
-/// A figure that cannot be drawn in `dir`, as an output error naming the file.
-fn figure_error(dir: &Path, error: ToolError) -> CliError {
-    match error {
-        ToolError::Write { path, source } => CliError::Output { path, source },
-        other => CliError::Output { path: dir.to_owned(), source: std::io::Error::other(other) },
-    }
 }
 
 /// A library error as a diagnostic: pointing at the spec value it concerns when there is one. A

@@ -173,8 +173,12 @@ impl TrajectoryFile {
                 group.push(g.to_owned());
             }
         }
-        // The momentum columns follow the coordinate order, as in the CSV header.
-        group.sort_by_key(|g| coordinates.iter().position(|c| c == g));
+        // The momentum columns follow the coordinate order, as in the CSV header (and the names'
+        // order where they are not coordinates: `x`, `y`, `z` of a rigid body).
+        group.sort_by(|a, b| {
+            let at = |g: &String| coordinates.iter().position(|c| c == g);
+            at(a).cmp(&at(b)).then_with(|| a.cmp(b))
+        });
         let files: Vec<Option<PathBuf>> = wanted(coordinates, &group)
             .iter()
             .map(|name| Some(npy.join(format!("{name}.npy"))).filter(|p| p.exists()))
@@ -185,6 +189,26 @@ impl TrajectoryFile {
         };
         let file = Self { path: npy.to_owned(), source: Source::Npy { files }, n_q: coordinates.len(), group, rows };
         file.check(coordinates)
+    }
+
+    /// The names of the columns of the trajectory in `dir` (the header of `trajectory.csv`, or else
+    /// the `npy/<column>.npy` files), and the file or directory they were read from.
+    pub fn column_names(dir: &Path) -> Result<(PathBuf, Vec<String>), ToolError> {
+        let csv = dir.join(TRAJECTORY);
+        let npy = dir.join("npy");
+        if !csv.exists() && npy.join("t.npy").exists() {
+            let entries =
+                std::fs::read_dir(&npy).map_err(|source| ToolError::Read { path: npy.clone(), source, help: None })?;
+            let names = entries
+                .flatten()
+                .filter_map(|e| e.file_name().to_string_lossy().strip_suffix(".npy").map(str::to_owned))
+                .collect();
+            return Ok((npy, names));
+        }
+        let mut reader = Self::csv_reader(dir, &csv)?;
+        let header = reader.headers().map_err(|e| ToolError::malformed(&csv, e.to_string()))?;
+        let names = header.iter().map(str::to_owned).collect();
+        Ok((csv, names))
     }
 
     /// Refuses a trajectory without time, without a coordinate, or without rows.

@@ -9,7 +9,7 @@ use super::ticks::{self, TickFormat};
 use super::FONT;
 
 /// The colours of successive series (a colour-blind-friendly qualitative palette).
-const PALETTE: [RGBColor; 8] = [
+pub(super) const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -21,12 +21,12 @@ const PALETTE: [RGBColor; 8] = [
 ];
 
 /// Font sizes in pixels, for a figure 1200 pixels wide.
-const TITLE_SIZE: f64 = 30.0;
-const SUBTITLE_SIZE: f64 = 20.0;
-const CAPTION_SIZE: f64 = 24.0;
-const AXIS_SIZE: f64 = 22.0;
-const TICK_SIZE: f64 = 18.0;
-const LEGEND_SIZE: f64 = 18.0;
+pub(super) const TITLE_SIZE: f64 = 30.0;
+pub(super) const SUBTITLE_SIZE: f64 = 20.0;
+pub(super) const CAPTION_SIZE: f64 = 24.0;
+pub(super) const AXIS_SIZE: f64 = 22.0;
+pub(super) const TICK_SIZE: f64 = 18.0;
+pub(super) const LEGEND_SIZE: f64 = 18.0;
 
 /// Labelled ticks per axis.
 const X_TICKS: usize = 8;
@@ -135,6 +135,20 @@ impl Figure {
     }
 }
 
+impl super::Drawing for Figure {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn size(&self) -> (u32, u32) {
+        Figure::size(self)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, k: u32) -> Result<(), String> {
+        draw(self, root, k)
+    }
+}
+
 impl Panel {
     /// With a caption over the chart.
     pub fn caption(mut self, caption: impl Into<String>) -> Self {
@@ -171,25 +185,25 @@ impl Panel {
 
 /// Lengths in pixels of a figure drawn `k` times its size (k > 1 for anti-aliased bitmaps).
 #[derive(Debug, Clone, Copy)]
-struct Px(u32);
+pub(super) struct Px(pub(super) u32);
 
 impl Px {
     /// `v` pixels of the figure at its own size.
-    fn f(self, v: f64) -> f64 {
+    pub(super) fn f(self, v: f64) -> f64 {
         v * f64::from(self.0)
     }
 
     /// `v` whole pixels of the figure at its own size.
-    fn u(self, v: u32) -> u32 {
+    pub(super) fn u(self, v: u32) -> u32 {
         v * self.0
     }
 
     /// `v` whole pixels of the figure at its own size, signed.
-    fn i(self, v: i32) -> i32 {
+    pub(super) fn i(self, v: i32) -> i32 {
         v * self.0 as i32
     }
 
-    fn font(self, size: f64) -> TextStyle<'static> {
+    pub(super) fn font(self, size: f64) -> TextStyle<'static> {
         (FONT, self.f(size)).into_font().color(&BLACK)
     }
 }
@@ -198,11 +212,7 @@ impl Px {
 pub fn draw<DB: DrawingBackend>(figure: &Figure, root: &DrawingArea<DB, Shift>, k: u32) -> Result<(), String> {
     let px = Px(k.max(1));
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let mut body = root.margin(px.i(12), 0, 0, 0).titled(&figure.title, px.font(TITLE_SIZE)).map_err(e)?;
-    if let Some(subtitle) = &figure.subtitle {
-        body = body.titled(subtitle, px.font(SUBTITLE_SIZE).color(&BLACK.mix(0.7))).map_err(e)?;
-    }
+    let body = titled(root, &figure.title, figure.subtitle.as_deref(), px)?;
     let areas = body.split_evenly((figure.panels.len().max(1), 1));
     // Panels over the same horizontal quantity share its range and name it once, under the last.
     let shared_x = figure.panels.windows(2).all(|w| w[0].x_label == w[1].x_label && w[0].scale == Scale::Linear);
@@ -221,6 +231,23 @@ pub fn draw<DB: DrawingBackend>(figure: &Figure, root: &DrawingArea<DB, Shift>, 
         draw_panel(panel, area, frame, y_area, x_desc, px)?;
     }
     root.present().map_err(e)
+}
+
+/// Fills `root` white and writes the title and the subtitle, if any, at its top; returns the area
+/// left under them.
+pub(super) fn titled<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    subtitle: Option<&str>,
+    px: Px,
+) -> Result<DrawingArea<DB, Shift>, String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let mut body = root.margin(px.i(12), 0, 0, 0).titled(title, px.font(TITLE_SIZE)).map_err(e)?;
+    if let Some(subtitle) = subtitle {
+        body = body.titled(subtitle, px.font(SUBTITLE_SIZE).color(&BLACK.mix(0.7))).map_err(e)?;
+    }
+    Ok(body)
 }
 
 /// The ranges a panel shows and how its numbers are written.

@@ -11,15 +11,19 @@ mod data;
 mod error;
 mod exact;
 mod figure;
+mod rigid;
+mod rigid_spheres;
 mod run_figures;
 mod sample;
 mod segments;
+mod sphere;
 mod supersample;
 mod ticks;
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 pub use data::{RunSummary, TrajectoryFile};
@@ -43,22 +47,33 @@ fn register_font() {
     });
 }
 
+/// What [`save`] writes: a figure of charts ([`Figure`]) or of curves on a sphere.
+pub trait Drawing {
+    /// File name without extension.
+    fn name(&self) -> &str;
+    /// Width and height in pixels.
+    fn size(&self) -> (u32, u32);
+    /// Draws on `root`, which has `k` times [`Drawing::size`] in each direction.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, k: u32) -> Result<(), String>;
+}
+
 /// Writes `figure` as `DIR/<name>.png` and `DIR/<name>.svg`; returns both paths.
-pub fn save(figure: &Figure, dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
+pub fn save<D: Drawing>(figure: &D, dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
     register_font();
     let size = figure.size();
+    let name = figure.name();
 
-    let png = dir.join(format!("{}.png", figure.name));
+    let png = dir.join(format!("{name}.png"));
     // The bitmap backend picks the encoder from the extension, so the temporary name keeps it.
-    let temporary = Temporary(dir.join(format!(".{}.partial.png", figure.name)));
+    let temporary = Temporary(dir.join(format!(".{name}.partial.png")));
     supersample::write_png(figure, &temporary.0, &png)?;
     temporary.commit(&png)?;
 
-    let svg = dir.join(format!("{}.svg", figure.name));
+    let svg = dir.join(format!("{name}.svg"));
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-        figure::draw(figure, &root, 1).map_err(|why| ToolError::write(&svg, why))?;
+        figure.draw(&root, 1).map_err(|why| ToolError::write(&svg, why))?;
     }
     write_atomically(&svg, text.as_bytes())?;
     Ok(vec![png, svg])
@@ -102,6 +117,9 @@ impl Drop for Temporary {
 
 /// Draws every figure of the run in `dir` into `dir`; returns the files written.
 pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
+    if rigid::is_rigid_run(dir) {
+        return rigid::plot_rigid_run(dir);
+    }
     let summary = RunSummary::read(dir)?;
     let trajectory = TrajectoryFile::open(dir, &summary.coordinates)?;
     let exact = exact::read(dir)?;

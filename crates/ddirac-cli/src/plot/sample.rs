@@ -61,21 +61,21 @@ impl Envelope {
 
 /// Every k-th point of a path, and its last point.
 #[derive(Debug, Clone)]
-pub struct Stride {
+pub struct Stride<P = (f64, f64)> {
     stride: usize,
     seen: usize,
-    last: Option<(f64, f64)>,
-    points: Vec<(f64, f64)>,
+    last: Option<P>,
+    points: Vec<P>,
 }
 
-impl Stride {
+impl<P> Stride<P> {
     /// A thinning of a path of `rows` points to about 2 × [`BUCKETS`] points.
     pub fn new(rows: usize) -> Self {
         Self { stride: rows.div_ceil(2 * BUCKETS).max(1), seen: 0, last: None, points: vec![] }
     }
 
     /// Adds the next point.
-    pub fn push(&mut self, point: (f64, f64)) {
+    pub fn push(&mut self, point: P) {
         if self.seen.is_multiple_of(self.stride) {
             self.points.push(point);
             self.last = None;
@@ -86,7 +86,7 @@ impl Stride {
     }
 
     /// The points to draw.
-    pub fn finish(mut self) -> Vec<(f64, f64)> {
+    pub fn finish(mut self) -> Vec<P> {
         self.points.extend(self.last);
         self.points
     }

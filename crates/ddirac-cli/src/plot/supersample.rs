@@ -8,8 +8,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::figure::{self, Figure};
-use super::ToolError;
+use super::{Drawing, ToolError};
 
 /// Samples per pixel along each axis.
 pub const FACTOR: u32 = 3;
@@ -24,13 +23,13 @@ fn factor((w, h): (u32, u32)) -> u32 {
 
 /// Draws `figure` anti-aliased into the PNG file `path` (whose extension picks the encoder); errors
 /// name `target`, the file it becomes.
-pub fn write_png(figure: &Figure, path: &Path, target: &Path) -> Result<(), ToolError> {
+pub fn write_png<D: Drawing>(figure: &D, path: &Path, target: &Path) -> Result<(), ToolError> {
     let (w, h) = figure.size();
     let k = factor((w, h));
     let mut large = vec![0u8; 3 * (w * k) as usize * (h * k) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut large, (w * k, h * k)).into_drawing_area();
-        figure::draw(figure, &root, k).map_err(|why| ToolError::write(target, why))?;
+        figure.draw(&root, k).map_err(|why| ToolError::write(target, why))?;
     }
     let small = downsample(&large, (w, h), k);
     drop(large);

@@ -2,7 +2,8 @@
 //! ([`plan`]), its run into an output directory (staged, locked and committed as a set, as every
 //! run), and what it writes ([`report`]): `trajectory.csv` with the columns `t`, `R11` … `R33`,
 //! `Pi1` … `Pi3`, `energy`, `momentum_x` … `momentum_z` (the spatial angular momentum R Π), the same
-//! columns as `npy/<column>.npy`, and `summary.json` with `final.R` (three rows) and `final.Pi`.
+//! columns as `npy/<column>.npy`, `summary.json` with `final.R` (three rows) and `final.Pi`, and
+//! with `output.plots = true` the figures of [`crate::plot`]'s rigid-body kind.
 
 pub mod check;
 pub mod plan;
@@ -17,7 +18,7 @@ use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
-use crate::{estimate, initial_entries, lock, overrides, signals, spec};
+use crate::{estimate, initial_entries, lock, overrides, plot, signals, spec};
 
 pub use plan::RigidPlan;
 
@@ -100,7 +101,8 @@ pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), 
     let grid = (plan.problem.steps, plan.every);
     estimate::check_estimate(&source, &spec, estimate, grid, &dir, 1, request.quiet)?;
     let mut progress = Progress::new(plan.problem.steps as u64, request.quiet);
-    let result = write_run(&source, &spec, &plan, request.spec, &dir, formats, started, &mut progress);
+    let plots = spec.output.plots.as_ref().is_some_and(|p| *p.get_ref());
+    let result = write_run(&source, &spec, &plan, request.spec, &dir, formats, plots, started, &mut progress);
     progress.finish();
     let text = result?;
     if !request.quiet {
@@ -109,7 +111,8 @@ pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), 
     Ok(())
 }
 
-/// Integrates and writes the trajectory and `summary.json` into `dir`; returns the human summary.
+/// Integrates and writes the trajectory and `summary.json` (and the figures, if `plots`) into `dir`;
+/// returns the human summary.
 #[allow(clippy::too_many_arguments)]
 fn write_run(
     source: &SpecSource,
@@ -118,6 +121,7 @@ fn write_run(
     path: &Path,
     dir: &Path,
     formats: output::Formats,
+    plots: bool,
     started: Instant,
     progress: &mut Progress,
 ) -> Result<String, CliError> {
@@ -148,6 +152,12 @@ fn write_run(
     let total = started.elapsed().as_secs_f64();
     let json = report::summary_json(plan, &summary, Some(path), Some(total));
     files.push(output::json(staging, "summary.json", &json)?);
+    let mut text = report::human(plan, &summary, dir, total);
+    if plots {
+        let drawn = plot::plot_run(staging).map_err(|e| CliError::figure(dir, e))?;
+        files.extend(drawn.iter().filter_map(|p| p.strip_prefix(staging).ok()).map(Path::to_path_buf));
+        text.push_str(&format!("\n  figures          {} (PNG and SVG)", drawn.len() / 2));
+    }
     run_dir.commit(&files)?;
-    Ok(report::human(plan, &summary, dir, total))
+    Ok(text)
 }

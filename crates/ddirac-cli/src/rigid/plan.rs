@@ -102,8 +102,11 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecE
     Ok(RigidPlan { body, parameters, problem, method, every, directory })
 }
 
+/// A body and all its parameters with their values, in the body's order.
+type BodyParameters = (RigidBody, Vec<(String, f64)>);
+
 /// The body with the spec's parameters, and all its parameters.
-fn body(source: &SpecSource, spec: &Spec) -> Result<(RigidBody, Vec<(String, f64)>), Box<SpecError>> {
+fn body(source: &SpecSource, spec: &Spec) -> Result<BodyParameters, Box<SpecError>> {
     let mut body = RigidBody::default_parameters();
     for (name, value) in &spec.parameters {
         let v = spec::finite(source, value, &format!("parameter `{}`", name.get_ref()))?;

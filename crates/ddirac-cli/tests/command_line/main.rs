@@ -55,6 +55,7 @@ mod npy;
 mod pendulum_chain;
 mod plots;
 mod rigid_body;
+mod rigid_body_figures;
 mod slurm_example;
 mod specs;
 mod undetermined_motion_is_refused;
