@@ -12,6 +12,7 @@ mod error;
 mod exact;
 mod figure;
 mod rigid;
+mod rigid_data;
 mod rigid_spheres;
 mod run_figures;
 mod sample;
@@ -117,7 +118,7 @@ impl Drop for Temporary {
 
 /// Draws every figure of the run in `dir` into `dir`; returns the files written.
 pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, ToolError> {
-    if rigid::is_rigid_run(dir) {
+    if rigid_data::is_rigid_run(dir) {
         return rigid::plot_rigid_run(dir);
     }
     let summary = RunSummary::read(dir)?;

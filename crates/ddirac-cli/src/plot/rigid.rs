@@ -1,5 +1,5 @@
 //! The figures of a rigid body's run (`system = "rigid_body"`), read from its `summary.json` and
-//! its trajectory (`t`, `R11` … `R33`, `Pi1` … `Pi3`, `energy`, `momentum_x` … `momentum_z`):
+//! its trajectory ([`super::rigid_data`]):
 //!
 //! - `momentum_sphere`: the body angular momentum Π on the sphere |Π| = |Π₀| with the level curves
 //!   of the energy ½ Σ Πᵢ²/Iᵢ (Euler's top); for a heavy body, whose |Π| varies, Π/|Π| alone;
@@ -9,159 +9,10 @@
 
 use std::path::{Path, PathBuf};
 
-use serde_json::Value;
-
-use super::data::{TrajectoryFile, SUMMARY};
 use super::figure::{Figure, Panel, Series};
+use super::rigid_data::{gather, RigidData, RigidSummary, RIGID_BODY};
 use super::rigid_spheres::{body_axes, momentum_sphere};
-use super::sample::{Envelope, Stride};
-use super::sphere::{unit, Vec3};
 use super::{save, ToolError};
-
-/// The system's name in `summary.json`.
-pub const RIGID_BODY: &str = "rigid_body";
-
-/// What the figures need from a rigid body's `summary.json`.
-pub struct RigidSummary {
-    /// The principal moments of inertia I1, I2, I3.
-    pub inertia: [f64; 3],
-    /// Whether gravity acts (m g |c| ≠ 0): then |Π| is not conserved.
-    pub heavy: bool,
-    /// `SO(3)`, `vertical` or `none`.
-    pub symmetry: String,
-    /// The parameters and the run, in one line.
-    pub description: String,
-}
-
-/// Whether `DIR/summary.json` is that of a rigid body's run (false if it cannot be read: the
-/// ordinary path reports why).
-pub fn is_rigid_run(dir: &Path) -> bool {
-    let json = std::fs::read_to_string(dir.join(SUMMARY)).ok().and_then(|t| serde_json::from_str::<Value>(&t).ok());
-    json.is_some_and(|j| j["system"].as_str() == Some(RIGID_BODY))
-}
-
-impl RigidSummary {
-    /// Reads `DIR/summary.json`.
-    pub fn read(dir: &Path) -> Result<Self, ToolError> {
-        let path = dir.join(SUMMARY);
-        let text = std::fs::read_to_string(&path).map_err(|source| ToolError::Read {
-            path: path.clone(),
-            source,
-            help: None,
-        })?;
-        let json: Value = serde_json::from_str(&text).map_err(|e| ToolError::malformed(&path, e.to_string()))?;
-        let parameter = |name: &str| {
-            json["parameters"][name]
-                .as_f64()
-                .ok_or_else(|| ToolError::malformed(&path, format!("no parameter `{name}`")))
-        };
-        let inertia = [parameter("I1")?, parameter("I2")?, parameter("I3")?];
-        let (m, g) = (parameter("m")?, parameter("g").unwrap_or(0.0));
-        let c = [parameter("c1").unwrap_or(0.0), parameter("c2").unwrap_or(0.0), parameter("c3").unwrap_or(0.0)];
-        let heavy = m * g * c.iter().map(|x| x * x).sum::<f64>().sqrt() != 0.0;
-        let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(", ");
-        let body = if heavy {
-            format!("I = ({}), m = {m}, g = {g}, c = ({})", list(&inertia), list(&c))
-        } else {
-            format!("I = ({}), free body", list(&inertia))
-        };
-        let method = &json["method"];
-        let order = method["order"].as_u64().filter(|&o| o > 2).map_or(String::new(), |o| format!(", order {o}"));
-        let description = format!(
-            "{body}; {} steps of h = {}, rule {}{order}, {}",
-            json["steps"].as_u64().map_or("?".into(), |n| n.to_string()),
-            json["step"].as_f64().map_or("?".into(), |h| h.to_string()),
-            method["rule"].as_str().unwrap_or("?"),
-            if method["reduced"].as_bool().unwrap_or(false) { "reduced by SO(3)" } else { "unreduced" },
-        );
-        let symmetry = json["symmetry"].as_str().unwrap_or("none").to_owned();
-        Ok(Self { inertia, heavy, symmetry, description })
-    }
-
-    /// The indices of the components of R Π its symmetry conserves.
-    fn conserved(&self) -> &'static [usize] {
-        match self.symmetry.as_str() {
-            "SO(3)" => &[0, 1, 2],
-            "vertical" => &[2],
-            _ => &[],
-        }
-    }
-}
-
-/// Everything the figures take from the trajectory, gathered in one pass.
-pub struct RigidData {
-    /// Π/|Π| (Π/|Π₀| where |Π| is conserved: the same to round-off).
-    pub pi: Stride<Vec3>,
-    /// Π at the first row.
-    pub pi0: Vec3,
-    /// The mean of Π/|Π| over the rows.
-    pub mean: Vec3,
-    /// R e₁, R e₂, R e₃.
-    pub axes: [Stride<Vec3>; 3],
-    /// R Π at the first row.
-    pub momentum0: Vec3,
-    energy: Envelope,
-    energy0: Option<f64>,
-    momentum: [Envelope; 3],
-    casimir: Envelope,
-}
-
-/// The attitude and body momentum columns, in the order a row's `q` holds them.
-fn columns() -> Vec<String> {
-    let attitude = (1..=3).flat_map(|i| (1..=3).map(move |j| format!("R{i}{j}")));
-    attitude.chain((1..=3).map(|i| format!("Pi{i}"))).collect()
-}
-
-fn gather(dir: &Path) -> Result<RigidData, ToolError> {
-    let names = columns();
-    let (path, present) = TrajectoryFile::column_names(dir)?;
-    let momentum = ["momentum_x", "momentum_y", "momentum_z"].map(str::to_owned);
-    if let Some(missing) = names.iter().chain(&momentum).find(|n| !present.contains(n)) {
-        let why = format!(
-            "no column `{missing}` (the trajectory of a rigid body has the columns t, R11 … R33, the attitude \
-             from body to space, Pi1 … Pi3, the body angular momentum, energy and momentum_x … momentum_z)"
-        );
-        return Err(ToolError::malformed(path, why));
-    }
-    let trajectory = TrajectoryFile::open(dir, &names)?;
-    let rows = trajectory.rows;
-    let mut data = RigidData {
-        pi: Stride::new(rows),
-        pi0: [0.0; 3],
-        mean: [0.0; 3],
-        axes: std::array::from_fn(|_| Stride::new(rows)),
-        momentum0: [f64::NAN; 3],
-        energy: Envelope::new(rows),
-        energy0: None,
-        momentum: std::array::from_fn(|_| Envelope::new(rows)),
-        casimir: Envelope::new(rows),
-    };
-    let mut first = true;
-    trajectory.for_each(|row| {
-        let (r, pi) = (&row.q[..9], [row.q[9], row.q[10], row.q[11]]);
-        let momentum = [row.momentum[0], row.momentum[1], row.momentum[2]];
-        if first {
-            (data.pi0, data.momentum0, first) = (pi, momentum, false);
-        }
-        let size = pi.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let direction = unit(pi);
-        data.pi.push(direction);
-        data.mean = std::array::from_fn(|i| data.mean[i] + direction[i] / rows as f64);
-        for (j, axis) in data.axes.iter_mut().enumerate() {
-            axis.push([r[j], r[3 + j], r[6 + j]]);
-        }
-        if let Some(e) = row.energy {
-            let e0 = *data.energy0.get_or_insert(e);
-            data.energy.push(row.t, Some(if e0 == 0.0 { e - e0 } else { (e - e0) / e0.abs() }));
-        }
-        for (i, envelope) in data.momentum.iter_mut().enumerate() {
-            envelope.push(row.t, Some(momentum[i] - data.momentum0[i]));
-        }
-        let size0 = data.pi0.iter().map(|x| x * x).sum::<f64>().sqrt();
-        data.casimir.push(row.t, Some(size / size0 - 1.0));
-    })?;
-    Ok(data)
-}
 
 /// The drift of the invariants against time, one panel each.
 fn invariants(summary: &RigidSummary, data: RigidData) -> Option<Figure> {

@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use plotters::style::{RGBColor, BLACK};
 
 use super::figure::PALETTE;
-use super::rigid::{RigidData, RigidSummary, RIGID_BODY};
+use super::rigid_data::{RigidData, RigidSummary, RIGID_BODY};
 use super::sphere::{dot, unit, Curve, Mark, SphereFigure, Stroke, Vec3, View};
 
 /// The oblique view: azimuth and elevation (radians) of the viewer, the third axis upward.
