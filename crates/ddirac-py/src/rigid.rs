@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use crate::error::{engine, raise};
 use crate::simulate::{watched, MethodArgs};
 use ddirac_cli::keys::{self, time::TimeKeys, Spelling};
+use ddirac_cli::rigid::plan::RigidModel;
 use ddirac_cli::rigid::{report, RigidPlan};
 
 /// The built-in rigid body with its parameters set.
@@ -90,7 +91,8 @@ impl RigidArgs {
         // The attitude and the data are checked before the GIL is released.
         problem.validate(0).map_err(engine)?;
         Ok(RigidPlan {
-            body: handle.body,
+            name: ddirac_cli::rigid::NAME.to_owned(),
+            body: RigidModel::Body(handle.body),
             parameters: handle.parameters.clone(),
             problem,
             method,
@@ -120,7 +122,7 @@ pub fn simulate_rigid<'py>(
         (vec![], vec![], vec![], vec![], vec![]);
     let summary = watched(py, progress, |watch| {
         let mut stepper = RigidStepper::new(&plan.body, plan.problem.clone(), &plan.method)?;
-        let mut keep = |stepper: &RigidStepper<'_, RigidBody>| {
+        let mut keep = |stepper: &RigidStepper<'_, RigidModel>| {
             let row = stepper.row();
             t.push(row.t);
             r.extend(row.r.iter().flatten());

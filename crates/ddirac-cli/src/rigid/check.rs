@@ -18,14 +18,15 @@ pub fn check(path: &std::path::Path, set: &[String], text: String) -> Result<(),
     };
     let (problem, method) = (&plan.problem, &plan.method);
     let r0 = problem.r0;
-    let omega0 = match problem.initial {
-        RigidInitial::Velocity { omega, .. } => omega,
-        RigidInitial::Momentum { pi, .. } => [0, 1, 2].map(|i| pi[i] / plan.body.inertia[i]),
+    let omega0 = match &problem.initial {
+        RigidInitial::Velocity { omega, .. } => *omega,
+        // The samples spread about Ω0 by its size: about 0, of size 1, without Ω0 at hand.
+        RigidInitial::Momentum { .. } => [0.0; 3],
     };
     let symmetry = ddirac::rigid::RigidSystem::symmetry(&plan.body);
     let mut lines = vec![format!(
         "{}: the attitude R on SO(3), rule {}, {}{}",
-        super::NAME,
+        plan.name,
         method.rule.name(),
         if method.reduced { "reduced by SO(3)" } else { "unreduced" },
         crate::report::composition(method.composition)
@@ -36,7 +37,11 @@ pub fn check(path: &std::path::Path, set: &[String], text: String) -> Result<(),
         so3::determinant(&r0) - 1.0,
         ddirac::rigid::ROTATION_TOLERANCE
     ));
-    let tested = test_symmetry(&plan.body, &r0, &omega0, &[], &[]);
+    let v0 = match &problem.initial {
+        RigidInitial::Velocity { v, .. } => v.clone(),
+        RigidInitial::Momentum { p, .. } => vec![0.0; p.len()],
+    };
+    let tested = test_symmetry(&plan.body, &r0, &omega0, &problem.s0, &v0);
     lines.push(match (&tested, symmetry) {
         (_, Symmetry::None) => "  symmetry          none declared: nothing to test or reduce".to_owned(),
         (Ok(deviation), _) => format!(

@@ -18,7 +18,7 @@ use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
-use crate::{estimate, initial_entries, lock, overrides, plot, signals, spec};
+use crate::{estimate, lock, overrides, plot, signals, spec};
 
 pub use plan::RigidPlan;
 
@@ -38,11 +38,16 @@ pub struct Request<'a> {
     pub format: &'a [output::Format],
 }
 
-/// Whether the spec text, with the `--set` assignments `set` applied, names the rigid body
-/// (`system = "rigid_body"`). A text that does not parse does not: its run reports the error.
+/// Whether the spec text, with the `--set` assignments `set` applied, names a rigid system: the
+/// built-in body (`system = "rigid_body"`) or a `[system]` table with an `attitude`. A text that does
+/// not parse does not: its run reports the error.
 pub fn names_rigid_body(text: &str, set: &[String]) -> bool {
     let named = |text: &str| {
-        toml::from_str::<toml::Table>(text).ok().is_some_and(|t| t.get("system").and_then(|s| s.as_str()) == Some(NAME))
+        toml::from_str::<toml::Table>(text).ok().is_some_and(|t| match t.get("system") {
+            Some(toml::Value::String(name)) => name == NAME,
+            Some(toml::Value::Table(table)) => table.contains_key("attitude"),
+            _ => false,
+        })
     };
     let edits: Vec<String> = set.iter().filter(|a| a.trim_start().starts_with("system")).cloned().collect();
     if edits.is_empty() {
@@ -64,16 +69,6 @@ pub struct LoadedRigid {
 /// Applies `set` to the spec text `text` of the file `path` and validates it as a rigid body's.
 pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<LoadedRigid, CliError> {
     let original = SpecSource::new(path.display().to_string(), text);
-    if let Some(arg) =
-        set.iter().find(|a| a.split_once('=').is_some_and(|(k, _)| initial_entries::Entry::parse(k).is_some()))
-    {
-        return Err(CliError::Set {
-            arg: arg.clone(),
-            why: "a rigid body has no coordinates to set one by one: set `initial.R`, `initial.Pi` or \
-                  `initial.Omega` whole (e.g. `--set 'initial.Pi=[0, 1, 0.1]'`)"
-                .into(),
-        });
-    }
     let source = if set.is_empty() {
         original
     } else {
@@ -96,7 +91,7 @@ pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), 
             Path::new("out").join(stem)
         }
     };
-    let columns = report::columns(&[]);
+    let columns = report::columns(&shape_names(&plan));
     let estimate = estimate::Estimate::of(plan.problem.steps, plan.every, columns.len(), formats);
     let grid = (plan.problem.steps, plan.every);
     estimate::check_estimate(&source, &spec, estimate, grid, &dir, 1, request.quiet)?;
@@ -127,7 +122,7 @@ fn write_run(
 ) -> Result<String, CliError> {
     let run_dir = RunDir::open(dir, &lock::command_line())?;
     let staging = run_dir.staging();
-    let mut trajectory = Trajectory::with_columns(staging, &report::columns(&[]), formats)?;
+    let mut trajectory = Trajectory::with_columns(staging, &report::columns(&shape_names(plan)), formats)?;
     let refused = |e: ddirac::Error| match plan::locate(spec, &e) {
         Some((span, label)) => CliError::from(source.error(Some(span), e.to_string(), label)),
         None => CliError::Integration(e),
@@ -160,4 +155,9 @@ fn write_run(
     }
     run_dir.commit(&files)?;
     Ok(text)
+}
+
+/// The names of the plan's shape coordinates.
+pub fn shape_names(plan: &RigidPlan) -> Vec<String> {
+    ddirac::rigid::RigidSystem::shape(&plan.body).into_iter().map(|c| c.name).collect()
 }

@@ -1,23 +1,60 @@
-//! A spec of the rigid body (`system = "rigid_body"`) checked and turned into the library's
-//! [`RigidProblem`] and [`Method`]: the parameters of [`RigidBody`], the attitude `initial.R` (three
-//! rows of three numbers, a rotation to [`ROTATION_TOLERANCE`]) and exactly one of `initial.Pi`,
-//! `initial.Omega`. Every refusal points at the value's span.
+//! A spec of a rigid system checked and turned into the library's [`RigidProblem`] and [`Method`]:
+//! the built-in rigid body (`system = "rigid_body"`, the parameters of [`RigidBody`]) or a `[system]`
+//! table with `attitude = "SO(3)"` (a Lagrangian in `R11` … `R33`, `Omega1` … `Omega3` and shape
+//! coordinates, with its `symmetry`); the attitude `initial.R` (three rows of three numbers, a rotation
+//! to [`ROTATION_TOLERANCE`]), exactly one of `initial.Pi`, `initial.Omega`, and for shape coordinates
+//! `initial.q` with `initial.p` (beside `Pi`) or `initial.v` (beside `Omega`). Every refusal points at
+//! the value's span.
 
 use std::ops::Range;
 
-use ddirac::rigid::{RigidInitial, RigidProblem, ROTATION_TOLERANCE};
+use ddirac::rigid::{RigidExpressionSystem, RigidInitial, RigidProblem, RigidSystem, Symmetry, ROTATION_TOLERANCE};
 use ddirac::systems::{Parameters, RigidBody};
-use ddirac::{Error, Input, Method};
+use ddirac::{Coordinate, Error, InitialMomentum, Input, Method, Scalar};
 use toml::Spanned;
 
 use crate::diagnostics::{SpecError, SpecSource};
-use crate::spec::{self, Number, Numbers, Spans, Spec};
+use crate::spec::{self, Number, Numbers, Spans, Spec, SystemRef, SystemTable};
 
-/// A validated rigid-body spec, ready to run.
+/// A rigid system of a spec: the built-in body or one whose Lagrangian is text.
+#[derive(Debug, Clone)]
+pub enum RigidModel {
+    /// `system = "rigid_body"`.
+    Body(RigidBody),
+    /// A `[system]` table with `attitude = "SO(3)"`.
+    Text(Box<RigidExpressionSystem>),
+}
+
+impl RigidSystem for RigidModel {
+    fn shape(&self) -> Vec<Coordinate> {
+        match self {
+            RigidModel::Body(b) => b.shape(),
+            RigidModel::Text(t) => t.shape(),
+        }
+    }
+
+    fn lagrangian<D: Scalar>(&self, r: &[[D; 3]; 3], omega: &[D; 3], s: &[D], v: &[D]) -> D {
+        match self {
+            RigidModel::Body(b) => b.lagrangian(r, omega, s, v),
+            RigidModel::Text(t) => t.lagrangian(r, omega, s, v),
+        }
+    }
+
+    fn symmetry(&self) -> Symmetry {
+        match self {
+            RigidModel::Body(b) => b.symmetry(),
+            RigidModel::Text(t) => t.symmetry(),
+        }
+    }
+}
+
+/// A validated rigid system's spec, ready to run.
 pub struct RigidPlan {
-    /// The body with its parameters set.
-    pub body: RigidBody,
-    /// All parameters with their effective values, in the body's order.
+    /// `rigid_body`, or `system.name` of a `[system]` table (default `custom`).
+    pub name: String,
+    /// The system with its parameters set.
+    pub body: RigidModel,
+    /// All parameters with their effective values, in the body's order (as written for a table).
     pub parameters: Vec<(String, f64)>,
     /// Step, steps and initial data.
     pub problem: RigidProblem,
@@ -29,9 +66,15 @@ pub struct RigidPlan {
     pub directory: Option<String>,
 }
 
-/// Validates a spec naming the rigid body.
+/// Validates a spec naming the rigid body or defining a rigid system.
 pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecError>> {
-    let (body, parameters) = body(source, spec)?;
+    let (name, body, parameters) = match spec.system.get_ref() {
+        SystemRef::Expression(table) => text_system(source, spec, table)?,
+        SystemRef::BuiltIn(_) => {
+            let (body, parameters) = body(source, spec)?;
+            (super::NAME.to_owned(), RigidModel::Body(body), parameters)
+        }
+    };
     if let Some(k) = &spec.method.connection {
         return Err(source
             .error(Some(k.span()), "a rigid body takes no `method.connection`", "no connection here")
@@ -44,25 +87,20 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecE
     }
     let method = spec::method_of(source, spec, &[], &mut Spans::default())?;
     let (step, steps) = spec::grid(source, &spec.time)?;
-    let initial = spec.initial.get_ref();
-    for (value, name) in [(initial.q.as_ref().map(|v| v.span()), "q"), (initial.p.as_ref().map(|v| v.span()), "p")]
-        .into_iter()
-        .chain([(initial.v.as_ref().map(|v| v.span()), "v")])
-    {
-        if let Some(span) = value {
-            return Err(source
-                .error(Some(span), format!("a rigid body takes no `initial.{name}`"), "not a key of the rigid body")
-                .with_help(
-                    "the rigid body's initial data are the attitude `R` (3 rows of 3 numbers, body to space) and \
-                     one of `Pi` (the body angular momentum) and `Omega` (the body angular velocity)",
-                ));
-        }
-    }
+    let shape = body.shape();
     let r0 = attitude(source, spec)?;
-    let initial = match (&initial.pi, &initial.omega) {
-        (Some(pi), None) => RigidInitial::Momentum { pi: vector(source, pi, "initial.Pi")?, p: vec![] },
-        (None, Some(omega)) => RigidInitial::Velocity { omega: vector(source, omega, "initial.Omega")?, v: vec![] },
-        (Some(pi), Some(omega)) => {
+    let (s0, shape_momentum) = shape_data(source, spec, &shape)?;
+    let values = shape_momentum_values(&shape_momentum).unwrap_or_default();
+    let momenta = shape_momentum.as_ref().map(|m| matches!(m, InitialMomentum::Momentum(_)));
+    let initial = spec.initial.get_ref();
+    let initial = match (&initial.pi, &initial.omega, momenta) {
+        (Some(pi), None, None | Some(true)) => {
+            RigidInitial::Momentum { pi: vector(source, pi, "initial.Pi")?, p: values }
+        }
+        (None, Some(omega), None | Some(false)) => {
+            RigidInitial::Velocity { omega: vector(source, omega, "initial.Omega")?, v: values }
+        }
+        (Some(pi), Some(omega), _) => {
             return Err(source
                 .error_with(
                     "`initial.Pi` and `initial.Omega` are both given",
@@ -71,15 +109,28 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecE
                         miette::LabeledSpan::new_with_span(Some("the angular velocity".into()), omega.span()),
                     ],
                 )
-                .with_help("give one of them: the other follows from it (Π = I Ω)"))
+                .with_help("give one of them: the other follows from it (Π = ∂ℓ/∂Ω)"))
         }
-        (None, None) => {
+        (None, None, _) => {
             return Err(source
                 .error(Some(spec.initial.span()), "neither `initial.Pi` nor `initial.Omega` is given", "in this table")
                 .with_help("give the body angular momentum `Pi = [..]` or the body angular velocity `Omega = [..]`"))
         }
+        (pi, _, _) => {
+            let (given, other) = if pi.is_some() { ("Pi", "p") } else { ("Omega", "v") };
+            return Err(source
+                .error(
+                    Some(spec.initial.span()),
+                    format!("`initial.{given}` goes with the shape's `initial.{other}`"),
+                    "in this table",
+                )
+                .with_help(
+                    "give momenta with momenta (`Pi` and `p`) or velocities with velocities (`Omega` and `v`): the \
+                     Legendre transform maps them together",
+                ));
+        }
     };
-    let problem = RigidProblem::new(step, steps, r0, initial);
+    let problem = RigidProblem { s0, ..RigidProblem::new(step, steps, r0, initial) };
     let out = &spec.output;
     let every = match &out.every {
         Some(e) if *e.get_ref() >= 1 => *e.get_ref() as usize,
@@ -99,7 +150,108 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecE
         }
         d => d.as_ref().map(|d| d.get_ref().clone()),
     };
-    Ok(RigidPlan { body, parameters, problem, method, every, directory })
+    Ok(RigidPlan { name, body, parameters, problem, method, every, directory })
+}
+
+/// The values of shape momenta or velocities.
+fn shape_momentum_values(momentum: &Option<InitialMomentum>) -> Option<Vec<f64>> {
+    match momentum {
+        Some(InitialMomentum::Momentum(p)) => Some(p.clone()),
+        Some(InitialMomentum::Velocity(v)) => Some(v.clone()),
+        None => None,
+    }
+}
+
+/// The shape's initial values and momenta or velocities: `initial.q` with `initial.p` or `initial.v`
+/// for shape coordinates, nothing (and none of those keys) without.
+fn shape_data(
+    source: &SpecSource,
+    spec: &Spec,
+    shape: &[Coordinate],
+) -> Result<(Vec<f64>, Option<InitialMomentum>), Box<SpecError>> {
+    let initial = spec.initial.get_ref();
+    if shape.is_empty() {
+        let given = [("q", initial.q.as_ref().map(|v| v.span())), ("p", initial.p.as_ref().map(|v| v.span()))]
+            .into_iter()
+            .chain([("v", initial.v.as_ref().map(|v| v.span()))]);
+        for (name, span) in given {
+            if let Some(span) = span {
+                return Err(source
+                    .error(Some(span), format!("a rigid body takes no `initial.{name}`"), "not a key of this body")
+                    .with_help(
+                        "this body has no shape coordinates: its initial data are the attitude `R` (3 rows of 3 \
+                         numbers, body to space) and one of `Pi` (the body angular momentum) and `Omega` (the body \
+                         angular velocity)",
+                    ));
+            }
+        }
+        return Ok((vec![], None));
+    }
+    let names: Vec<&str> = shape.iter().map(|c| c.name.as_str()).collect();
+    let (q0, momentum) = spec::initial::initial(source, spec, &names, &mut Spans::default(), true)?;
+    Ok((q0, Some(momentum)))
+}
+
+/// The rigid system of a `[system]` table: `attitude = "SO(3)"`, `symmetry`, no `group`, charts or
+/// exact solutions.
+fn text_system(
+    source: &SpecSource,
+    spec: &Spec,
+    table: &SystemTable,
+) -> Result<(String, RigidModel, Vec<(String, f64)>), Box<SpecError>> {
+    let span = spec.system.span();
+    let refuse = |at: Range<usize>, key: &str, why: &str| {
+        Err(source
+            .error(Some(at), format!("a rigid system takes no `system.{key}`"), "not for a rigid system")
+            .with_help(why.to_owned()))
+    };
+    if let Some(attitude) = table.attitude.as_ref().filter(|a| a.get_ref() != "SO(3)") {
+        return Err(source
+            .error(Some(attitude.span()), format!("unknown attitude group `{}`", attitude.get_ref()), "not SO(3)")
+            .with_help("`system.attitude = \"SO(3)\"`: the attitude is a rotation R (body to space)"));
+    }
+    if let Some(group) = &table.group {
+        return refuse(
+            group.span(),
+            "group",
+            "its group is SO(3), acting on the attitude R: list no group coordinates; \
+            what it leaves invariant is `symmetry`",
+        );
+    }
+    if let Some(charts) = &table.charts {
+        let at = charts.first().map_or(span.clone(), |c| c.span());
+        return refuse(at, "charts", "the attitude is advanced on SO(3) itself, in no chart");
+    }
+    if let Some(q) = &table.quality {
+        return refuse(q.span(), "quality", "the attitude is advanced on SO(3) itself, in no chart");
+    }
+    if let Some(exact) = &table.exact {
+        return refuse(exact.span(), "exact", "exact solutions of rigid systems are not taken");
+    }
+    let symmetry = match &table.symmetry {
+        Some(s) => match s.get_ref().as_str() {
+            "SO(3)" => Symmetry::Rotations,
+            "vertical" => Symmetry::Vertical,
+            "none" => Symmetry::None,
+            other => {
+                return Err(source
+                    .error(Some(s.span()), format!("unknown symmetry `{other}`"), "not a symmetry")
+                    .with_help(
+                        "`system.symmetry` is `SO(3)` (every rotation of space), `vertical` (rotations about \
+                        e3) or `none`",
+                    ))
+            }
+        },
+        None => {
+            return Err(source.error(Some(span), "a rigid system declares its `symmetry`", "in this table").with_help(
+                "write `symmetry = \"SO(3)\"` (L invariant under every rotation of space), `\"vertical\"` \
+                    (under rotations about e3) or `\"none\"`: the check tests it before a run",
+            ))
+        }
+    };
+    let (system, parameters) = spec::expression::build_rigid(source, spec, table, span, symmetry)?;
+    let name = table.name.as_ref().map_or_else(|| "custom".to_owned(), |n| n.get_ref().clone());
+    Ok((name, RigidModel::Text(Box::new(system)), parameters))
 }
 
 /// A body and all its parameters with their values, in the body's order.

@@ -42,8 +42,10 @@ pub struct RigidSummaryJson<'a> {
     ddirac_version: &'static str,
     #[serde(skip_serializing_if = "Option::is_none")]
     spec: Option<String>,
-    system: &'static str,
+    system: &'a str,
     parameters: report::Parameters<'a>,
+    #[serde(skip_serializing_if = "<[String]>::is_empty")]
+    shape: Vec<String>,
     symmetry: &'static str,
     method: MethodJson,
     steps: usize,
@@ -104,10 +106,16 @@ impl MethodJson {
 #[allow(non_snake_case)]
 struct InitialJson {
     R: [[f64; 3]; 3],
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    q: Vec<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     Pi: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     Omega: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    p: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    v: Option<Vec<f64>>,
 }
 
 #[derive(Serialize)]
@@ -120,6 +128,10 @@ struct OutputJson {
 struct FinalJson {
     R: [[f64; 3]; 3],
     Pi: [f64; 3],
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    q: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    p: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -148,24 +160,31 @@ pub fn summary_json<'a>(
     spec: Option<&Path>,
     total_seconds: Option<f64>,
 ) -> RigidSummaryJson<'a> {
-    let (pi, omega) = match plan.problem.initial {
-        RigidInitial::Momentum { pi, .. } => (Some(pi), None),
-        RigidInitial::Velocity { omega, .. } => (None, Some(omega)),
+    let shaped = |x: &Vec<f64>| (!x.is_empty()).then(|| x.clone());
+    let (pi, omega, p, v) = match &plan.problem.initial {
+        RigidInitial::Momentum { pi, p } => (Some(*pi), None, shaped(p), None),
+        RigidInitial::Velocity { omega, v } => (None, Some(*omega), None, shaped(v)),
     };
     let j = &summary.momentum_map;
     RigidSummaryJson {
         ddirac_version: env!("CARGO_PKG_VERSION"),
         spec: spec.map(|s| s.display().to_string()),
-        system: super::NAME,
+        system: &plan.name,
+        shape: super::shape_names(plan),
         parameters: report::Parameters(&plan.parameters),
         symmetry: summary.symmetry.name(),
         method: MethodJson::new(&plan.method),
         steps: summary.steps,
         step: summary.step,
         duration: summary.step * summary.steps as f64,
-        initial: InitialJson { R: plan.problem.r0, Pi: pi, Omega: omega },
+        initial: InitialJson { R: plan.problem.r0, q: plan.problem.s0.clone(), Pi: pi, Omega: omega, p, v },
         output: OutputJson { every: plan.every },
-        final_state: FinalJson { R: summary.final_r, Pi: summary.final_pi },
+        final_state: FinalJson {
+            R: summary.final_r,
+            Pi: summary.final_pi,
+            q: summary.final_s.clone(),
+            p: summary.final_p.clone(),
+        },
         energy: StatsJson::new(&summary.energy, true),
         momentum_map: MomentumMapJson {
             initial: &j.initial,
@@ -202,7 +221,7 @@ pub fn human(plan: &RigidPlan, summary: &RigidSummary, dir: &Path, total_seconds
     [
         format!(
             "{}: {} steps of h = {} (T = {}), rule {}, {}{}",
-            super::NAME,
+            plan.name,
             summary.steps,
             summary.step,
             summary.step * summary.steps as f64,

@@ -99,6 +99,42 @@ pub fn build(
     Ok(Built { system, name, parameters: values, coordinates })
 }
 
+/// The rigid system a `[system]` table with `attitude = "SO(3)"` defines (written at `span`), with the
+/// constants of `[parameters]`: its shape coordinates (none when `shape` is not given), its
+/// Lagrangian in `R11` … `R33`, `Omega1` … `Omega3`, the shape and its velocities, and `symmetry`.
+pub fn build_rigid(
+    source: &SpecSource,
+    spec: &Spec,
+    table: &SystemTable,
+    span: Range<usize>,
+    symmetry: ddirac::rigid::Symmetry,
+) -> Result<(ddirac::rigid::RigidExpressionSystem, Vec<(String, f64)>), Box<SpecError>> {
+    let declared = match (&table.shape, &table.angles, &table.order) {
+        (None, None, None) => Declared { coordinates: vec![], spans: vec![] },
+        _ => lists::coordinates(source, table, span.clone())?,
+    };
+    let mut parameters: Vec<(&Spanned<String>, &Number)> = spec.parameters.iter().collect();
+    parameters.sort_by_key(|(key, _)| key.span().start);
+    let values = parameters
+        .iter()
+        .map(|(name, value)| {
+            let v = super::finite(source, value, &format!("parameter `{}`", name.get_ref()))?;
+            Ok((name.get_ref().clone(), v))
+        })
+        .collect::<Result<Vec<_>, Box<SpecError>>>()?;
+    let definitions = sources(&table.definitions);
+    let expression = ExpressionSpec {
+        coordinates: declared.coordinates.clone(),
+        lagrangian: table.lagrangian.get_ref().clone(),
+        definitions: definitions.into_iter().map(|(k, v)| (k.get_ref().clone(), v.get_ref().clone())).collect(),
+        parameters: values.clone(),
+        ..ExpressionSpec::default()
+    };
+    let context = Context { source, table, declared: &declared, charts: &[], parameters: &parameters, span };
+    let system = ddirac::rigid::RigidExpressionSystem::new(&expression, symmetry).map_err(|e| context.error(e))?;
+    Ok((system, values))
+}
+
 /// Where the sources and declarations of a `[system]` table are written.
 struct Context<'a> {
     source: &'a SpecSource,

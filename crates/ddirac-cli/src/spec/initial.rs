@@ -23,20 +23,22 @@ fn values(vector: &Vector) -> Values {
     }
 }
 
-/// q0 and exactly one of p0, v0.
+/// q0 and exactly one of p0, v0 (of a rigid system's shape coordinates when `rigid`: the rigid
+/// body's keys `R`, `Pi`, `Omega` are refused otherwise).
 pub fn initial(
     source: &SpecSource,
     spec: &Spec,
     names: &[&str],
     spans: &mut Spans,
+    rigid: bool,
 ) -> Result<(Vec<f64>, InitialMomentum), Box<SpecError>> {
     let initial = spec.initial.get_ref();
-    let rigid = [
+    let rigid_keys = [
         initial.r.as_ref().map(|v| (v.span(), "R")),
         initial.pi.as_ref().map(|v| (v.span(), "Pi")),
         initial.omega.as_ref().map(|v| (v.span(), "Omega")),
     ];
-    if let Some((span, name)) = rigid.into_iter().flatten().next() {
+    if let Some((span, name)) = rigid_keys.into_iter().flatten().next().filter(|_| !rigid) {
         return Err(source
             .error(Some(span), format!("`initial.{name}` belongs to a rigid body"), "not a key of this system")
             .with_help(

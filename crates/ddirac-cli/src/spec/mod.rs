@@ -5,6 +5,7 @@
 //! system = "charged_particle"                 # a built-in system, or a [system] table:
 //! [system]      name = "charged particle"  shape = ["x", "y", "z"]  group = ["theta"]
 //!               angles = ["theta"]  order = [...]  lagrangian = "0.5*m*x_dot^2 + ..."
+//!               attitude = "SO(3)"  symmetry = "SO(3)"   # a rigid system: L in R11..R33, Omega1..3
 //! [system.definitions]  Ax = "-B0/2*y"        # named sub-expressions
 //! [system.exact]        x = "sin(t)"          # exact solution, in `t` and the parameters
 //! [[system.charts]]     name = "cap"  shape = ["u", "v"]  quality = "..."   # an atlas (with
@@ -23,8 +24,8 @@
 //! The schema keeps every value [`Spanned`], so that [`validate`] can point at the text of any value
 //! it rejects; unknown keys are refused by the parser itself, with the key's span.
 
-mod expression;
-mod initial;
+pub(crate) mod expression;
+pub(crate) mod initial;
 mod lists;
 mod spans;
 mod strings;
@@ -196,6 +197,13 @@ pub struct SystemTable {
     pub quality: Option<Spanned<String>>,
     /// The other charts of the atlas, `[[system.charts]]`.
     pub charts: Option<Vec<Spanned<ChartTable>>>,
+    /// `"SO(3)"`: the configuration holds an attitude R (body to space) besides the `shape`
+    /// coordinates, and the Lagrangian is written in `R11` … `R33` and the body angular velocity
+    /// `Omega1` … `Omega3` (a rigid system, [`crate::rigid`]).
+    pub attitude: Option<Spanned<String>>,
+    /// A rigid system's symmetry: the rotations of space leaving the Lagrangian invariant, `"SO(3)"`,
+    /// `"vertical"` (about e3) or `"none"`.
+    pub symmetry: Option<Spanned<String>>,
 }
 
 /// `[[system.charts]]`: a chart of the system's atlas (paper §6), with its coordinates, the maps to

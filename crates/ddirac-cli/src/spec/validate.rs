@@ -61,7 +61,23 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
             })?;
             (built_in.name.to_owned(), system, parameters)
         }
+        SystemRef::Expression(table) if table.attitude.is_some() => {
+            return Err(source
+                .error(Some(spec.system.span()), "this command does not take rigid systems yet", "a rigid system")
+                .with_help(
+                    "`ddirac run` and `ddirac check` take a `[system]` with an `attitude` (and Python's \
+                    `ddirac.simulate`)",
+                ))
+        }
         SystemRef::Expression(table) => {
+            if let Some(symmetry) = &table.symmetry {
+                return Err(source
+                    .error(Some(symmetry.span()), "`system.symmetry` belongs to rigid systems", "no attitude here")
+                    .with_help(
+                        "a system in coordinates lists the coordinates its symmetry translates in `group`; \
+                        `symmetry` declares the rotations leaving a rigid system (`attitude = \"SO(3)\"`) invariant",
+                    ));
+            }
             let built = expression::build(source, spec, table, spec.system.span())?;
             spans.angles = table
                 .angles
@@ -84,7 +100,7 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
     let (step, steps) = time::grid(source, &spec.time)?;
 
     let names: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
-    let (q0, momentum) = initial::initial(source, spec, &names, &mut spans)?;
+    let (q0, momentum) = initial::initial(source, spec, &names, &mut spans, false)?;
 
     let out = &spec.output;
     let every = match &out.every {

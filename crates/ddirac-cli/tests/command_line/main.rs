@@ -56,6 +56,7 @@ mod pendulum_chain;
 mod plots;
 mod rigid_body;
 mod rigid_body_figures;
+mod rigid_examples;
 mod slurm_example;
 mod specs;
 mod undetermined_motion_is_refused;

@@ -5,9 +5,7 @@
 
 use crate::common;
 
-use common::{assert_fails, run, succeed, TempDir};
-
-type M3 = [[f64; 3]; 3];
+use common::{assert_fails, euler_rk4, run, succeed, TempDir, M3};
 
 const FREE: &str = r#"system = "rigid_body"
 [parameters]
@@ -36,59 +34,6 @@ fn heavy() -> String {
          R = [[1, 0, 0], [0, {c:?}, {:?}], [0, {s:?}, {c:?}]]\nPi = [0.3, -0.2, 1.5]\n[output]\nevery = 20\n",
         -s
     )
-}
-
-fn mul(a: &M3, b: &M3) -> M3 {
-    let mut c = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    c
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-/// Euler's equations of the body (I, m g c) from (R0, Π0) over `t` by RK4 with `n` steps.
-fn euler_rk4(inertia: [f64; 3], mgc: [f64; 3], r0: M3, pi0: [f64; 3], t: f64, n: usize) -> (M3, [f64; 3]) {
-    let field = |r: &M3, pi: &[f64; 3]| -> (M3, [f64; 3]) {
-        let omega = [0, 1, 2].map(|i| pi[i] / inertia[i]);
-        let gamma = [r[2][0], r[2][1], r[2][2]];
-        let torque = cross(gamma, mgc);
-        let spin = cross(*pi, omega);
-        let hat = [[0.0, -omega[2], omega[1]], [omega[2], 0.0, -omega[0]], [-omega[1], omega[0], 0.0]];
-        (mul(r, &hat), [0, 1, 2].map(|i| spin[i] + torque[i]))
-    };
-    let h = t / n as f64;
-    let (mut r, mut pi) = (r0, pi0);
-    let add = |r: &M3, pi: &[f64; 3], k: &(M3, [f64; 3]), a: f64| -> (M3, [f64; 3]) {
-        let mut rr = *r;
-        for i in 0..3 {
-            for j in 0..3 {
-                rr[i][j] += a * k.0[i][j];
-            }
-        }
-        (rr, [0, 1, 2].map(|i| pi[i] + a * k.1[i]))
-    };
-    for _ in 0..n {
-        let k1 = field(&r, &pi);
-        let s2 = add(&r, &pi, &k1, h / 2.0);
-        let k2 = field(&s2.0, &s2.1);
-        let s3 = add(&r, &pi, &k2, h / 2.0);
-        let k3 = field(&s3.0, &s3.1);
-        let s4 = add(&r, &pi, &k3, h);
-        let k4 = field(&s4.0, &s4.1);
-        for i in 0..3 {
-            for j in 0..3 {
-                r[i][j] += h / 6.0 * (k1.0[i][j] + 2.0 * k2.0[i][j] + 2.0 * k3.0[i][j] + k4.0[i][j]);
-            }
-            pi[i] += h / 6.0 * (k1.1[i] + 2.0 * k2.1[i] + 2.0 * k3.1[i] + k4.1[i]);
-        }
-    }
-    (r, pi)
 }
 
 fn final_state(summary: &serde_json::Value) -> (M3, [f64; 3]) {
@@ -249,7 +194,7 @@ fn wrong_initial_velocities_and_momenta_are_refused() {
     refused(&["initial.Omega=[1, inf, 0]"], &["entry 2 of initial.Omega is not finite"]);
     refused(&["initial.Omega=[1e200, 0, 0]"], &["overflows"]);
     refused(&["initial.q=[0]"], &["a rigid body takes no `initial.q`"]);
-    refused(&["initial.q.x=1"], &["a rigid body has no coordinates to set one by one"]);
+    refused(&["initial.q.x=1"], &["a rigid body takes no `initial.q`", "this body has no shape coordinates"]);
 }
 
 #[test]

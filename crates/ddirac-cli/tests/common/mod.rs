@@ -187,3 +187,74 @@ pub fn files_under(dir: &Path) -> std::collections::BTreeSet<String> {
     }
     found
 }
+
+/// A 3 × 3 matrix as rows.
+pub type M3 = [[f64; 3]; 3];
+
+fn mul(a: &M3, b: &M3) -> M3 {
+    let mut c = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    c
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Euler's equations of a rigid body (principal moments I, gravity's m g c) from (R0, Π0) over `t` by
+/// RK4 with `n` steps: Π̇ = Π × Ω + Γ × m g c, Γ = Rᵀe3, Ṙ = R Ω̂, Ω = I⁻¹Π.
+pub fn euler_rk4(inertia: [f64; 3], mgc: [f64; 3], r0: M3, pi0: [f64; 3], t: f64, n: usize) -> (M3, [f64; 3]) {
+    gyrostat_rk4(inertia, [0.0; 3], mgc, r0, pi0, t, n)
+}
+
+/// The same for a gyrostat, a body with rotors of constant momenta `rotors` along its axes:
+/// Ω = J⁻¹(Π − rotors).
+pub fn gyrostat_rk4(
+    inertia: [f64; 3],
+    rotors: [f64; 3],
+    mgc: [f64; 3],
+    r0: M3,
+    pi0: [f64; 3],
+    t: f64,
+    n: usize,
+) -> (M3, [f64; 3]) {
+    let field = |r: &M3, pi: &[f64; 3]| -> (M3, [f64; 3]) {
+        let omega = [0, 1, 2].map(|i| (pi[i] - rotors[i]) / inertia[i]);
+        let gamma = [r[2][0], r[2][1], r[2][2]];
+        let torque = cross(gamma, mgc);
+        let spin = cross(*pi, omega);
+        let hat = [[0.0, -omega[2], omega[1]], [omega[2], 0.0, -omega[0]], [-omega[1], omega[0], 0.0]];
+        (mul(r, &hat), [0, 1, 2].map(|i| spin[i] + torque[i]))
+    };
+    let h = t / n as f64;
+    let (mut r, mut pi) = (r0, pi0);
+    let add = |r: &M3, pi: &[f64; 3], k: &(M3, [f64; 3]), a: f64| -> (M3, [f64; 3]) {
+        let mut rr = *r;
+        for i in 0..3 {
+            for j in 0..3 {
+                rr[i][j] += a * k.0[i][j];
+            }
+        }
+        (rr, [0, 1, 2].map(|i| pi[i] + a * k.1[i]))
+    };
+    for _ in 0..n {
+        let k1 = field(&r, &pi);
+        let s2 = add(&r, &pi, &k1, h / 2.0);
+        let k2 = field(&s2.0, &s2.1);
+        let s3 = add(&r, &pi, &k2, h / 2.0);
+        let k3 = field(&s3.0, &s3.1);
+        let s4 = add(&r, &pi, &k3, h);
+        let k4 = field(&s4.0, &s4.1);
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] += h / 6.0 * (k1.0[i][j] + 2.0 * k2.0[i][j] + 2.0 * k3.0[i][j] + k4.0[i][j]);
+            }
+            pi[i] += h / 6.0 * (k1.1[i] + 2.0 * k2.1[i] + 2.0 * k3.1[i] + k4.1[i]);
+        }
+    }
+    (r, pi)
+}
