@@ -12,10 +12,7 @@ use crate::diagnostics::CliError;
 /// be refused.
 pub fn check(path: &std::path::Path, set: &[String], text: String) -> Result<(), CliError> {
     let super::LoadedRigid { source, spec, plan } = super::load_text(path, text, set)?;
-    let located = |e: ddirac::Error| match plan::locate(&spec, &e) {
-        Some((span, label)) => CliError::from(source.error(Some(span), e.to_string(), label)),
-        None => CliError::Integration(e),
-    };
+    let located = |e: ddirac::Error| plan::refusal(&source, &spec, e);
     let (problem, method) = (&plan.problem, &plan.method);
     let r0 = problem.r0;
     let omega0 = match &problem.initial {

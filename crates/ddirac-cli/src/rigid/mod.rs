@@ -123,10 +123,7 @@ fn write_run(
     let run_dir = RunDir::open(dir, &lock::command_line())?;
     let staging = run_dir.staging();
     let mut trajectory = Trajectory::with_columns(staging, &report::columns(&shape_names(plan)), formats)?;
-    let refused = |e: ddirac::Error| match plan::locate(spec, &e) {
-        Some((span, label)) => CliError::from(source.error(Some(span), e.to_string(), label)),
-        None => CliError::Integration(e),
-    };
+    let refused = |e: ddirac::Error| plan::refusal(source, spec, e);
     let mut stepper = RigidStepper::new(&plan.body, plan.problem.clone(), &plan.method).map_err(refused)?;
     let mut write = |stepper: &RigidStepper<'_, _>| -> Result<(), CliError> {
         let row = stepper.row();

@@ -326,12 +326,42 @@ fn vector(source: &SpecSource, numbers: &Numbers, what: &str) -> Result<[f64; 3]
     Ok(out)
 }
 
+/// A library error refusing a run before its first step, pointing at the spec's value it concerns
+/// (a non-invariant Lagrangian at its `symmetry`, with what to declare instead); a failure without a
+/// place in the spec stays a numerical one.
+pub fn refusal(source: &SpecSource, spec: &Spec, error: Error) -> crate::diagnostics::CliError {
+    let help = match &error {
+        Error::NotInvariantUnderRotations { .. } => Some(
+            "declare the rotations the Lagrangian is invariant under: `symmetry = \"vertical\"` (about e3) or \
+             `\"none\"`; a Lagrangian that depends on R only through its third row R31, R32, R33 (the vertical \
+             seen from the body, Rᵀe3, as a potential of gravity −g e3 does) is invariant under rotations about e3",
+        ),
+        _ => None,
+    };
+    match locate(spec, &error) {
+        Some((span, label)) => {
+            let report = source.error(Some(span), error.to_string(), label);
+            crate::diagnostics::CliError::from(match help {
+                Some(help) => report.with_help(help),
+                None => report,
+            })
+        }
+        None => crate::diagnostics::CliError::Integration(error),
+    }
+}
+
 /// Where a library error about the run concerns the spec: the span and its label.
 pub fn locate(spec: &Spec, error: &Error) -> Option<(Range<usize>, &'static str)> {
     let m = &spec.method;
     let span = |v: &Option<Spanned<String>>| v.as_ref().map(|v| v.span());
+    let symmetry = || match spec.system.get_ref() {
+        SystemRef::Expression(table) => table.symmetry.as_ref().map(|s| s.span()),
+        SystemRef::BuiltIn(_) => Some(spec.system.span()),
+    };
     match error {
         Error::NotReducible { .. } => Some((m.reduced.as_ref()?.span(), "reduced by SO(3)")),
+        Error::NotInvariantUnderRotations { .. } => Some((symmetry()?, "the declared symmetry")),
+        Error::Undecided { .. } => Some((symmetry()?, "the declared symmetry")),
         Error::Invalid { what: Input::Argument(key), .. } => match key.as_str() {
             "method.variant" => Some((span(&m.variant)?, "this variant")),
             "method.derivatives" => Some((span(&m.derivatives)?, "this choice")),

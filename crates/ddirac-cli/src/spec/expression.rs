@@ -336,6 +336,15 @@ fn help(error: &ExpressionError, context: &Context<'_>) -> Option<String> {
         ExpressionError::UnknownName { origin: Origin::ExactSolution(_), .. } => {
             Some(format!("an exact solution may use `t` and the parameters ({})", list(parameter_names(context))))
         }
+        ExpressionError::UnknownName { .. } if context.table.attitude.is_some() => Some(format!(
+            "the Lagrangian and the definitions of a rigid system may use the body angular velocity (Omega1, \
+             Omega2, Omega3), the attitude's entries (R11, R12, …, R33), the shape coordinates ({}), their \
+             velocities ({}), the parameters ({}) and the definitions ({}); give constants in `[parameters]`",
+            list(coordinates.clone()),
+            list(coordinates.iter().map(|c| format!("{c}_dot")).collect()),
+            list(parameter_names(context)),
+            list(sources(&context.table.definitions).iter().map(|(k, _)| k.get_ref().clone()).collect()),
+        )),
         ExpressionError::UnknownName { .. } => Some(format!(
             "the Lagrangian and the definitions may use the coordinates ({}), their velocities ({}), the \
              parameters ({}) and the definitions ({}); give constants in `[parameters]`",

@@ -285,3 +285,92 @@ fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
     let output = run(&spec, &[], &dir);
     assert_fails(&output, &dir, &["`initial.Pi` belongs to a rigid body"]);
 }
+
+/// A free body written as text, with a rotor about its third axis.
+const TEXT: &str = r#"[system]
+name = "body with a rotor"
+attitude = "SO(3)"
+symmetry = "SO(3)"
+shape = ["a"]
+angles = ["a"]
+lagrangian = "0.5*(I1*Omega1^2 + I2*Omega2^2 + I3*Omega3^2) + 0.5*K*(Omega3 + a_dot)^2"
+[parameters]
+I1 = 1.0
+I2 = 2.0
+I3 = 3.0
+K = 0.5
+[time]
+step = 0.01
+steps = 300
+[initial]
+R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+Omega = [0.3, 1.0, 0.2]
+q = { a = 0.0 }
+v = { a = 5.0 }
+[output]
+every = 300
+"#;
+
+#[test]
+fn a_body_written_as_text_runs_as_the_built_in_one_when_it_is_the_same_body() {
+    // With the rotor's momentum p_a = K (Ω3 + ȧ) = 0 (ȧ = −Ω3 at the start, and p_a is conserved), the
+    // rotor stays at rest in space and the body moves exactly as the free body of moments (I1, I2, I3).
+    let dir = TempDir::new("rigid-text");
+    let spec = dir.file("text.toml", TEXT);
+    let text = succeed(&spec, &["initial.v.a=-0.2", "method.order=4"], &dir);
+    let builtin_dir = TempDir::new("rigid-text-builtin");
+    let builtin = dir.file(
+        "free.toml",
+        &FREE.replace("Omega = [0.01, 2.0, 0.01]", "Omega = [0.3, 1.0, 0.2]").replace("duration = 5.0", "steps = 300"),
+    );
+    let body = succeed(&builtin, &["output.every=300"], &builtin_dir);
+    let (a, b) = (final_state(&text.summary), final_state(&body.summary));
+    assert!(distance(&a, &b) < 1e-12, "text and built-in differ by {:e}", distance(&a, &b));
+    assert!(text.column("p_a").iter().all(|p| p.abs() < 1e-12));
+    assert_eq!(text.summary["system"], "body with a rotor");
+}
+
+/// Runs TEXT with the `--set` overrides, which must be refused (exit 2) naming every needle.
+fn text_refused(sets: &[&str], needles: &[&str]) -> String {
+    let dir = TempDir::new("rigid-text-refused");
+    let spec = dir.file("text.toml", TEXT);
+    let output = run(&spec, sets, &dir);
+    let stderr = assert_fails(&output, &dir, needles);
+    assert_eq!(output.status.code(), Some(2), "{sets:?}");
+    stderr
+}
+
+#[test]
+fn wrong_text_rigid_systems_are_refused_where_they_are_wrong() {
+    text_refused(&["system.symmetry=SO4"], &["unknown symmetry `SO4`"]);
+    text_refused(&["system.attitude=SE3"], &["unknown attitude group `SE3`"]);
+    text_refused(&["system.group=[\"a\"]"], &["a rigid system takes no `system.group`"]);
+    text_refused(&["system.quality=\"1\""], &["a rigid system takes no `system.quality`"]);
+    // A Lagrangian that depends on the attitude is not invariant under every rotation: refused at the
+    // symmetry it declares, with what to declare instead; declared vertical, it runs.
+    let lagrangian =
+        "system.lagrangian=\"0.5*(I1*Omega1^2 + I2*Omega2^2 + I3*Omega3^2) + 0.5*K*(Omega3 + a_dot)^2 - 9.8*R33\"";
+    text_refused(&[lagrangian], &["not invariant under its declared symmetry `SO(3)`", "symmetry = \"vertical\""]);
+    let dir = TempDir::new("rigid-text-vertical");
+    let spec = dir.file("text.toml", TEXT);
+    let heavy = succeed(&spec, &[lagrangian, "system.symmetry=vertical"], &dir);
+    assert_eq!(heavy.summary["symmetry"], "vertical");
+    // A potential in the first row is not invariant about the vertical either.
+    let tilted = "system.lagrangian=\"0.5*(I1*Omega1^2 + I2*Omega2^2 + I3*Omega3^2) + 0.5*K*(Omega3 + a_dot)^2 - R13\"";
+    text_refused(&[tilted, "system.symmetry=vertical"], &["not invariant under its declared symmetry `vertical`"]);
+    let stderr =
+        text_refused(&["system.lagrangian=\"0.5*I1*Omgea1^2\""], &["unknown name `Omgea1` (did you mean `Omega1`?)"]);
+    assert!(stderr.contains("the body angular velocity (Omega1, Omega2, Omega3)"), "{stderr}");
+    text_refused(&["parameters.Omega1=1"], &["`Omega1`"]);
+    // Momenta go with momenta: Π with the shape's p, Ω with its v.
+    text_refused(&["initial.Omega=[0, nan, 0]"], &["entry 2 of initial.Omega is not finite"]);
+    let dir = TempDir::new("rigid-text-mixed");
+    let spec = dir.file("mixed.toml", &TEXT.replace("Omega = [0.3, 1.0, 0.2]", "Pi = [0.3, 2.0, 0.6]"));
+    assert_fails(&run(&spec, &[], &dir), &dir, &["`initial.Pi` goes with the shape's `initial.p`"]);
+    text_refused(&["initial.v.b=1"], &["not a coordinate"]);
+    // `symmetry` belongs to rigid systems.
+    let dir = TempDir::new("rigid-text-coordinates");
+    let kepler = std::fs::read_to_string(common::example("kepler_expression.toml")).unwrap();
+    let spec = dir.file("kepler.toml", &kepler);
+    assert_fails(&run(&spec, &["system.symmetry=SO(3)"], &dir), &dir, &["`system.symmetry` belongs to rigid systems"]);
+}
