@@ -32,6 +32,8 @@ class RigidHandle:
     name: str
     parameters: list[tuple[str, float]]
     symmetry: str
+    @property
+    def shape(self) -> list[tuple[str, str]]: ...
 
 class LoadedSpec:
     name: str
@@ -69,6 +71,15 @@ def simulate(
 ) -> dict[str, Any]: ...
 def check(system: SystemHandle, run_args: dict[str, Any]) -> dict[str, Any]: ...
 def rigid_body(parameters: Sequence[tuple[str, float]]) -> RigidHandle: ...
+def rigid_text_system(
+    lagrangian: str,
+    shape: Sequence[str],
+    angles: Sequence[str],
+    definitions: Sequence[tuple[str, str]],
+    parameters: Sequence[tuple[str, float]],
+    symmetry: str,
+    name: Optional[str] = None,
+) -> RigidHandle: ...
 def simulate_rigid(
     handle: RigidHandle,
     run_args: dict[str, Any],

@@ -107,7 +107,7 @@ class Run:
 
 
 @overload
-def simulate(system: RigidBody, q0: None = None, p0: None = None, v0: None = None,
+def simulate(system: RigidBody, q0: Optional[Vector] = None, p0: Optional[Vector] = None, v0: Optional[Vector] = None,
              step: Optional[float] = None, steps: Optional[int] = None, duration: Optional[float] = None,
              rule: str = "midpoint", variant: str = "plus", reduced: bool = False, every: int = 1,
              wrap_angles: bool = False, progress: ProgressArgument = None, *, R0: Any,
@@ -157,7 +157,8 @@ def simulate(system: System, q0: Optional[Vector] = None, p0: Optional[Vector] =
 
     A rigid body (``System.builtin("rigid_body", ...)``, a :class:`ddirac.RigidBody`) starts from the
     attitude ``R0`` (3 × 3, body to space: a rotation to 1e-12) with the body angular momentum ``Pi0``
-    or the body angular velocity ``Omega0``, and returns a :class:`ddirac.RigidRun` (``run.R`` of shape
+    or the body angular velocity ``Omega0`` (and its shape coordinates, if any, from ``q0`` with ``p0``
+    beside ``Pi0`` or ``v0`` beside ``Omega0``), and returns a :class:`ddirac.RigidRun` (``run.R`` of shape
     (rows, 3, 3), ``run.Pi`` (rows, 3)); ``reduced=True`` runs the reduced equations of a body invariant
     under every rotation (a heavy body is refused). ``variant``, ``connection``, ``atlas`` and
     ``wrap_angles`` have no meaning on SO(3).
@@ -165,13 +166,11 @@ def simulate(system: System, q0: Optional[Vector] = None, p0: Optional[Vector] =
     from .rigid import RigidBody, simulate_rigid
 
     if isinstance(system, RigidBody):
-        if q0 is not None or p0 is not None or v0 is not None:
-            raise _ddirac.Error("a rigid body has no coordinates: give `R0` and one of `Pi0`, `Omega0`, "
-                                "not `q0`, `p0`, `v0`")
         if wrap_angles:
             raise _ddirac.Error("`wrap_angles` has no meaning for a rigid body: its attitude is the matrix R")
         keys = _method_keys(rule, variant, reduced, method)
-        result: Run = simulate_rigid(system, R0, Pi0, Omega0, step, steps, duration, every, keys, progress)
+        result: Run = simulate_rigid(system, R0, Pi0, Omega0, q0, p0, v0, step, steps, duration, every, keys,
+                                     progress)
     else:
         if R0 is not None or Pi0 is not None or Omega0 is not None:
             raise _ddirac.Error(f"`R0`, `Pi0` and `Omega0` are the initial data of a rigid body; "

@@ -77,7 +77,7 @@ class System:
         if str(name) == "rigid_body":
             from .rigid import RigidBody
 
-            return RigidBody(**parameters)
+            return RigidBody._builtin(**parameters)
         system = cls.__new__(cls)
         overrides = [(str(k), _number(v, f"parameter `{k}`")) for k, v in parameters.items()]
         system._handle = _ddirac.builtin_system(str(name), overrides)

@@ -6,6 +6,7 @@ wrong input refused with a message naming it."""
 import json
 import subprocess
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,12 +15,13 @@ import ddirac
 from command_line import built
 
 
-def euler_rk4(inertia, mgc, R0, Pi0, T, n):
-    """Π̇ = Π × Ω + Γ × (m g c), Γ = Rᵀ e3, Ṙ = R Ω̂, by RK4 with n steps."""
-    inertia, mgc = np.asarray(inertia, float), np.asarray(mgc, float)
+def euler_rk4(inertia, mgc, R0, Pi0, T, n, rotors=(0.0, 0.0, 0.0)):
+    """Π̇ = Π × Ω + Γ × (m g c), Γ = Rᵀ e3, Ṙ = R Ω̂, Ω = I⁻¹(Π − rotors) (a gyrostat whose rotors
+    carry the constant momenta `rotors`), by RK4 with n steps."""
+    inertia, mgc, rotors = np.asarray(inertia, float), np.asarray(mgc, float), np.asarray(rotors, float)
 
     def field(R, Pi):
-        omega = Pi / inertia
+        omega = (Pi - rotors) / inertia
         hat = np.array([[0, -omega[2], omega[1]], [omega[2], 0, -omega[0]], [-omega[1], omega[0], 0]])
         return R @ hat, np.cross(Pi, omega) + np.cross(R[2], mgc)
 
@@ -105,7 +107,7 @@ def test_wrong_inputs_are_refused_naming_them():
         (dict(R0=np.eye(3), Omega0=[0, 1, 0], atlas=False), "takes no `atlas`"),
         (dict(R0=np.eye(3), Omega0=[0, 1, 0], order=4, rule="left"), "order"),
         (dict(R0=np.eye(3), Omega0=[0, 1, 0], wrap_angles=True), "`wrap_angles` has no meaning"),
-        (dict(q0=[0.0], R0=np.eye(3), Omega0=[0, 1, 0]), "has no coordinates"),
+        (dict(q0=[0.0], R0=np.eye(3), Omega0=[0, 1, 0]), "has no shape coordinates"),
     ]
     for arguments, message in cases:
         with pytest.raises(ddirac.Error, match=message):
@@ -135,3 +137,66 @@ def test_a_step_that_does_not_resolve_the_rotation_warns():
 
 def test_builtin_systems_lists_the_rigid_body():
     assert "rigid_body" in ddirac.builtin_systems()
+
+
+SATELLITE = "0.5*(J1*Omega1^2 + J2*Omega2^2 + J3*Omega3^2) + 0.5*(K1*w1^2 + K2*w2^2 + K3*w3^2)"
+ROTOR_RATES = {"w1": "Omega1 + a1_dot", "w2": "Omega2 + a2_dot", "w3": "Omega3 + a3_dot"}
+MOMENTS = {"J1": 1.0, "J2": 2.0, "J3": 3.0, "K1": 0.1, "K2": 0.1, "K3": 0.1}
+
+
+def satellite(**changes):
+    arguments = dict(symmetry="SO(3)", shape=["a1", "a2", "a3"], angles=["a1", "a2", "a3"],
+                     definitions=ROTOR_RATES, parameters=MOMENTS, name="satellite with three rotors")
+    arguments.update(changes)
+    return ddirac.RigidBody(arguments.pop("lagrangian", SATELLITE), **arguments)
+
+
+def test_a_satellite_with_rotors_written_as_text_follows_the_gyrostat():
+    body = satellite()
+    assert body.coordinates == ["a1", "a2", "a3"] and body.angles == ["a1", "a2", "a3"] and body.symmetry == "SO(3)"
+    run = ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 2.0, 0.01], q0=[0, 0, 0], v0={"a2": 30.0, "a1": 0, "a3": 0},
+                          step=0.005, duration=10.0, order=4, every=100, reduced=True)
+    assert run.q.shape == (21, 3) and run.p.shape == (21, 3) and run.coordinates == ["a1", "a2", "a3"]
+    rotors = [0.001, 3.2, 0.001]
+    R, Pi = euler_rk4([1, 2, 3], [0, 0, 0], np.eye(3), [0.011, 7.2, 0.031], 10.0, 20_000, rotors=rotors)
+    assert np.abs(run.R[-1] - R).max() < 3e-8 and np.abs(run.Pi[-1] - Pi).max() < 3e-8
+    assert np.abs(run.p - rotors).max() < 1e-10
+    assert list(run.columns())[13:19] == ["a1", "a2", "a3", "p_a1", "p_a2", "p_a3"]
+    unreduced = ddirac.simulate(body, R0=np.eye(3), Omega0=[0.01, 2.0, 0.01], q0=[0, 0, 0], v0=[0, 30, 0],
+                                step=0.005, duration=10.0, order=4, every=100)
+    assert np.abs(unreduced.R - run.R).max() < 1e-11 and np.abs(unreduced.q - run.q).max() < 1e-9
+
+
+def test_the_satellite_example_runs_the_same_from_python_and_the_command_line(tmp_path):
+    out = tmp_path / "out"
+    subprocess.run([built(), "run", "../../examples/satellite_rotors.toml", "--out", str(out), "--quiet",
+                    "--set", "time.duration=2.0"], check=True, cwd=str(Path(__file__).parent))
+    summary = json.loads((out / "summary.json").read_text())
+    run = ddirac.simulate(satellite(), R0=np.eye(3), Omega0=[0.01, 2.0, 0.01], q0=[0, 0, 0], v0=[0, 30, 0],
+                          step=0.01, duration=2.0, reduced=True, every=10)
+    assert run.summary["final"] == summary["final"]
+    assert run.summary["system"] == summary["system"] == "satellite with three rotors"
+
+
+def test_wrong_text_rigid_systems_are_refused_naming_the_cause():
+    with pytest.raises(ddirac.Error, match="unknown symmetry"):
+        satellite(symmetry="SO4")
+    with pytest.raises(ddirac.ExpressionError, match="(?s)unknown name `Omgea1`.*the body angular velocity"):
+        satellite(lagrangian="0.5*Omgea1^2 + K1*w1^2")
+    with pytest.raises(ddirac.ExpressionError, match="`Omega1`"):
+        satellite(parameters={**MOMENTS, "Omega1": 1.0})
+    with pytest.raises(ddirac.Error, match="not a shape coordinate"):
+        satellite(angles=["b"])
+    body = satellite(lagrangian=SATELLITE + " - 9.8*R13")
+    with pytest.raises(ddirac.InvarianceError, match="not invariant under its declared symmetry `SO\\(3\\)`"):
+        ddirac.simulate(body, R0=np.eye(3), Omega0=[0, 1, 0], q0=[0, 0, 0], v0=[0, 0, 0], step=0.01, steps=10)
+    body = satellite()
+    grid = dict(R0=np.eye(3), step=0.01, steps=10)
+    with pytest.raises(ddirac.Error, match="`Pi0` goes with the shape's momenta `p0`"):
+        ddirac.simulate(body, Pi0=[0, 1, 0], q0=[0, 0, 0], v0=[0, 0, 0], **grid)
+    with pytest.raises(ddirac.Error, match="`q0` is missing"):
+        ddirac.simulate(body, Omega0=[0, 1, 0], v0=[0, 0, 0], **grid)
+    with pytest.raises(ddirac.Error, match="p0. or .v0"):
+        ddirac.simulate(body, Omega0=[0, 1, 0], q0=[0, 0, 0], **grid)
+    with pytest.raises(ddirac.Error, match="3 entries|coordinate"):
+        ddirac.simulate(body, Omega0=[0, 1, 0], q0=[0, 0], v0=[0, 0, 0], **grid)

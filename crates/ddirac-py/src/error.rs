@@ -69,9 +69,9 @@ pub fn engine(error: ddirac::Error) -> PyErr {
             let _ = value.setattr("residual", py.None());
             err
         }
-        E::NotInvariant { .. } | E::Undecided { hypothesis: ddirac::Hypothesis::Invariance, .. } => {
-            InvarianceError::new_err(message)
-        }
+        E::NotInvariant { .. }
+        | E::NotInvariantUnderRotations { .. }
+        | E::Undecided { hypothesis: ddirac::Hypothesis::Invariance, .. } => InvarianceError::new_err(message),
         _ => Error::new_err(message),
     })
 }
@@ -84,6 +84,8 @@ pub struct Declared<'a> {
     pub parameters: &'a [String],
     /// The definitions, in order.
     pub definitions: &'a [String],
+    /// Whether the system is rigid: its Lagrangian also uses `Omega1` … `Omega3` and `R11` … `R33`.
+    pub rigid: bool,
 }
 
 /// Names listed in a help, at most (a generated system may have thousands of definitions).
@@ -101,6 +103,18 @@ fn help(error: &Expression, declared: &Declared<'_>) -> Option<String> {
     match error {
         Expression::UnknownName { origin: Origin::ExactSolution(_), .. } => {
             Some(format!("an exact solution may use `t` and the parameters ({})", parameters()))
+        }
+        Expression::UnknownName { origin: Origin::Lagrangian | Origin::Definition(_), .. } if declared.rigid => {
+            Some(format!(
+                "the Lagrangian and the definitions of a rigid system may use the body angular velocity (Omega1, \
+                 Omega2, Omega3), the attitude's entries (R11, R12, …, R33), the shape coordinates ({}), their \
+                 velocities ({}), the parameters ({}) and the definitions ({}); give constants in \
+                 `parameters={{...}}`",
+                list(declared.coordinates.to_vec()),
+                list(declared.coordinates.iter().map(|c| format!("{c}_dot")).collect()),
+                parameters(),
+                list(declared.definitions.to_vec()),
+            ))
         }
         Expression::UnknownName { origin: Origin::Lagrangian | Origin::Definition(_), .. } => Some(format!(
             "the Lagrangian and the definitions may use the coordinates ({}), their velocities ({}), the \

@@ -27,6 +27,7 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<system::SystemHandle>()?;
     m.add_class::<rigid::RigidHandle>()?;
     m.add_function(wrap_pyfunction!(rigid::rigid_body, m)?)?;
+    m.add_function(wrap_pyfunction!(rigid::rigid_text_system, m)?)?;
     m.add_function(wrap_pyfunction!(rigid::simulate_rigid, m)?)?;
     m.add_function(wrap_pyfunction!(system::builtin_system, m)?)?;
     m.add_function(wrap_pyfunction!(system::text_system, m)?)?;

@@ -2,8 +2,10 @@
 //! (R0, Π0 or Ω0) on a time grid with the method keys of a spec, the rows gathered into arrays while
 //! the GIL is released (`R` of shape (rows, 3, 3), `Pi` and `momentum_map` of shape (rows, 3)).
 
-use ddirac::rigid::{RigidInitial, RigidProblem, RigidStepper};
+use ddirac::expression::ExpressionSpec;
+use ddirac::rigid::{RigidExpressionSystem, RigidInitial, RigidProblem, RigidStepper, RigidSystem, Symmetry};
 use ddirac::systems::{Parameters, RigidBody};
+use ddirac::Coordinate;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -14,13 +16,13 @@ use ddirac_cli::keys::{self, time::TimeKeys, Spelling};
 use ddirac_cli::rigid::plan::RigidModel;
 use ddirac_cli::rigid::{report, RigidPlan};
 
-/// The built-in rigid body with its parameters set.
+/// A rigid system: the built-in body with its parameters set, or one whose Lagrangian is text.
 #[pyclass(module = "ddirac._ddirac", frozen)]
 pub struct RigidHandle {
-    body: RigidBody,
+    body: RigidModel,
     /// The name `summary.json` gives it.
     #[pyo3(get)]
-    pub name: &'static str,
+    pub name: String,
     /// Its parameters, by name, in its order.
     #[pyo3(get)]
     pub parameters: Vec<(String, f64)>,
@@ -37,8 +39,87 @@ pub fn rigid_body(parameters: Vec<(String, f64)>) -> PyResult<RigidHandle> {
         body.set_parameter(name, *value).map_err(engine)?;
     }
     let all = body.parameters().into_iter().map(|(n, v)| (n.to_owned(), v)).collect();
-    let symmetry = ddirac::rigid::RigidSystem::symmetry(&body).name();
-    Ok(RigidHandle { body, name: ddirac_cli::rigid::NAME, parameters: all, symmetry })
+    let symmetry = RigidSystem::symmetry(&body).name();
+    Ok(RigidHandle {
+        body: RigidModel::Body(body),
+        name: ddirac_cli::rigid::NAME.to_owned(),
+        parameters: all,
+        symmetry,
+    })
+}
+
+#[pymethods]
+impl RigidHandle {
+    /// The shape coordinates as (name, kind) with kind `real` or `angle`.
+    #[getter]
+    fn shape(&self) -> Vec<(String, &'static str)> {
+        RigidSystem::shape(&self.body)
+            .into_iter()
+            .map(|c| {
+                let kind = if c.kind == ddirac::CoordinateKind::Angle { "angle" } else { "real" };
+                (c.name, kind)
+            })
+            .collect()
+    }
+}
+
+/// A rigid system whose Lagrangian is text, in `Omega1` … `Omega3`, `R11` … `R33`, the `shape`
+/// coordinates (the `angles` among them on S¹) and their velocities, with the `symmetry` it declares
+/// (`SO(3)`, `vertical` or `none`).
+#[pyfunction]
+#[pyo3(signature = (lagrangian, shape, angles, definitions, parameters, symmetry, name=None))]
+pub fn rigid_text_system(
+    lagrangian: String,
+    shape: Vec<String>,
+    angles: Vec<String>,
+    definitions: Vec<(String, String)>,
+    parameters: Vec<(String, f64)>,
+    symmetry: &str,
+    name: Option<String>,
+) -> PyResult<RigidHandle> {
+    let symmetry = match symmetry {
+        "SO(3)" => Symmetry::Rotations,
+        "vertical" => Symmetry::Vertical,
+        "none" => Symmetry::None,
+        other => {
+            return Err(raise(format!(
+                "unknown symmetry {other:?}: `symmetry` is \"SO(3)\" (every rotation of space), \"vertical\" \
+                 (rotations about e3) or \"none\""
+            )))
+        }
+    };
+    if let Some(a) = angles.iter().find(|a| !shape.contains(a)) {
+        return Err(raise(format!("`{a}` in `angles` is not a shape coordinate; they are: {}", shape.join(", "))));
+    }
+    let coordinates: Vec<Coordinate> = shape
+        .iter()
+        .map(|n| if angles.contains(n) { Coordinate::shape(n).angle() } else { Coordinate::shape(n) })
+        .collect();
+    let mut sources = vec![("lagrangian".to_owned(), lagrangian.clone())];
+    sources.extend(definitions.iter().map(|(n, v)| (format!("definition:{n}"), v.clone())));
+    let parameter_names: Vec<String> = parameters.iter().map(|(n, _)| n.clone()).collect();
+    let definition_names: Vec<String> = definitions.iter().map(|(n, _)| n.clone()).collect();
+    let declared = crate::error::Declared {
+        coordinates: &shape,
+        parameters: &parameter_names,
+        definitions: &definition_names,
+        rigid: true,
+    };
+    let spec = ExpressionSpec {
+        coordinates,
+        lagrangian,
+        definitions,
+        parameters: parameters.clone(),
+        ..ExpressionSpec::default()
+    };
+    let system =
+        RigidExpressionSystem::new(&spec, symmetry).map_err(|e| crate::error::expression(e, &sources, &declared))?;
+    Ok(RigidHandle {
+        body: RigidModel::Text(Box::new(system)),
+        name: name.unwrap_or_else(|| "custom".to_owned()),
+        parameters,
+        symmetry: symmetry.name(),
+    })
 }
 
 /// What a rigid body's run is made of, as the Python package passes it (a dict).
@@ -48,6 +129,9 @@ pub(crate) struct RigidArgs {
     r0: Vec<Vec<f64>>,
     pi0: Option<Vec<f64>>,
     omega0: Option<Vec<f64>>,
+    q0: Option<crate::simulate::VectorArg>,
+    p0: Option<crate::simulate::VectorArg>,
+    v0: Option<crate::simulate::VectorArg>,
     step: Option<f64>,
     steps: Option<i64>,
     duration: Option<f64>,
@@ -68,9 +152,46 @@ impl RigidArgs {
         for (i, row) in self.r0.iter().enumerate() {
             r0[i] = three(row, &format!("row {} of R0", i + 1))?;
         }
+        let shape = RigidSystem::shape(&handle.body);
+        let (s0, shape_momentum) = if shape.is_empty() {
+            if self.q0.is_some() || self.p0.is_some() || self.v0.is_some() {
+                return Err(raise(
+                    "this rigid body has no shape coordinates: give `R0` and one of `Pi0`, `Omega0`, not `q0`, `p0`, `v0`",
+                ));
+            }
+            (vec![], None)
+        } else {
+            let names: Vec<&str> = shape.iter().map(|c| c.name.as_str()).collect();
+            let Some(q0) = self.q0 else {
+                return Err(raise(format!(
+                    "`q0` is missing: the shape coordinates ({}) at the start",
+                    names.join(", ")
+                )));
+            };
+            let (q0, momentum) = keys::initial::initial(
+                &q0.values(),
+                self.p0.map(crate::simulate::VectorArg::values).as_ref(),
+                self.v0.map(crate::simulate::VectorArg::values).as_ref(),
+                &names,
+                Spelling::Argument,
+            )
+            .map_err(|e| raise(e.text()))?;
+            (q0, Some(momentum))
+        };
+        let (p, v) = match shape_momentum {
+            Some(ddirac::InitialMomentum::Momentum(p)) => (Some(p), None),
+            Some(ddirac::InitialMomentum::Velocity(v)) => (None, Some(v)),
+            None => (None, None),
+        };
         let initial = match (self.pi0, self.omega0) {
-            (Some(pi), None) => RigidInitial::Momentum { pi: three(&pi, "Pi0")?, p: vec![] },
-            (None, Some(omega)) => RigidInitial::Velocity { omega: three(&omega, "Omega0")?, v: vec![] },
+            (Some(_), None) if v.is_some() => {
+                return Err(raise("`Pi0` goes with the shape's momenta `p0`, `Omega0` with its velocities `v0`"))
+            }
+            (None, Some(_)) if p.is_some() => {
+                return Err(raise("`Omega0` goes with the shape's velocities `v0`, `Pi0` with its momenta `p0`"))
+            }
+            (Some(pi), None) => RigidInitial::Momentum { pi: three(&pi, "Pi0")?, p: p.unwrap_or_default() },
+            (None, Some(omega)) => RigidInitial::Velocity { omega: three(&omega, "Omega0")?, v: v.unwrap_or_default() },
             (Some(_), Some(_)) => return Err(raise("give one of `Pi0` and `Omega0`, not both (Π = I Ω)")),
             (None, None) => {
                 return Err(raise(
@@ -87,12 +208,12 @@ impl RigidArgs {
             return Err(raise("a rigid body takes no `atlas`: its attitude is advanced on SO(3), in no chart"));
         }
         let method = keys::method::method(&self.method.0, &[], Spelling::Argument).map_err(|e| raise(e.text()))?;
-        let problem = RigidProblem::new(step, steps, r0, initial);
+        let problem = RigidProblem { s0, ..RigidProblem::new(step, steps, r0, initial) };
         // The attitude and the data are checked before the GIL is released.
-        problem.validate(0).map_err(engine)?;
+        problem.validate(shape.len()).map_err(engine)?;
         Ok(RigidPlan {
-            name: ddirac_cli::rigid::NAME.to_owned(),
-            body: RigidModel::Body(handle.body),
+            name: handle.name.clone(),
+            body: handle.body.clone(),
             parameters: handle.parameters.clone(),
             problem,
             method,
@@ -120,6 +241,8 @@ pub fn simulate_rigid<'py>(
     let plan = run_args.plan(handle, every)?;
     let (mut t, mut r, mut pi, mut energy, mut j): (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) =
         (vec![], vec![], vec![], vec![], vec![]);
+    let (mut q, mut p): (Vec<f64>, Vec<f64>) = (vec![], vec![]);
+    let n = RigidSystem::shape(&plan.body).len();
     let summary = watched(py, progress, |watch| {
         let mut stepper = RigidStepper::new(&plan.body, plan.problem.clone(), &plan.method)?;
         let mut keep = |stepper: &RigidStepper<'_, RigidModel>| {
@@ -129,6 +252,8 @@ pub fn simulate_rigid<'py>(
             pi.extend(row.pi);
             energy.push(row.energy);
             j.extend(row.momentum_map);
+            q.extend(&row.s);
+            p.extend(&row.p);
         };
         keep(&stepper);
         while !stepper.is_finished() {
@@ -148,6 +273,8 @@ pub fn simulate_rigid<'py>(
     out.set_item("Pi", PyArray1::from_vec(py, pi).reshape([rows, 3])?)?;
     out.set_item("energy", PyArray1::from_vec(py, energy))?;
     out.set_item("momentum_map", PyArray1::from_vec(py, j).reshape([rows, 3])?)?;
+    out.set_item("q", PyArray1::from_vec(py, q).reshape([rows, n])?)?;
+    out.set_item("p", PyArray1::from_vec(py, p).reshape([rows, n])?)?;
     let text = serde_json::to_string(&report::summary_json(&plan, &summary, None, None))
         .map_err(|e| raise(format!("the summary cannot be written as JSON: {e}")))?;
     out.set_item("summary", py.import("json")?.call_method1("loads", (text,))?)?;

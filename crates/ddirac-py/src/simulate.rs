@@ -69,7 +69,7 @@ pub(crate) enum VectorArg {
 }
 
 impl VectorArg {
-    fn values(self) -> Values {
+    pub(crate) fn values(self) -> Values {
         match self {
             VectorArg::InOrder(list) => Values::InOrder(list),
             VectorArg::ByName(entries) => Values::ByName(entries),

@@ -130,6 +130,7 @@ pub fn text_system(
         coordinates: &coordinate_names,
         parameters: &parameter_names,
         definitions: &definition_names,
+        rigid: false,
     };
     let spec = ExpressionSpec {
         coordinates,
