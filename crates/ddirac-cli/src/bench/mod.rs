@@ -22,7 +22,8 @@
 //! - `dimension`: the chain of N pendula in a fixed dimension against the same chain in a dynamic
 //!   one, per step, with dual numbers and compiled derivatives ([`dimension`]);
 //! - `ensemble`: members on 2 threads against 1, 10³ short members against the sum of their steps,
-//!   and the peak memory of `ddirac ensemble` against its output ([`ensemble`]).
+//!   and the peak memory of `ddirac ensemble` against its output ([`ensemble`]);
+//! - `rigid`: the free rigid body's step on SO(3) against a hand-written LGVI ([`rigid`]).
 //!
 //! `--json PATH` writes every measurement, round by round, through a temporary file renamed into
 //! place when complete.
@@ -53,10 +54,12 @@ mod ensemble;
 mod expression;
 mod harness;
 mod interpolation;
+mod lgvi;
 mod linearity;
 mod print;
 mod race;
 mod reduction;
+mod rigid;
 mod scaling;
 mod work_precision;
 
@@ -115,11 +118,13 @@ pub enum Group {
     Dimension,
     /// Members on threads, set-up amortised, memory of ensembles.
     Ensemble,
+    /// The rigid body's step on SO(3) against a hand-written LGVI.
+    Rigid,
 }
 
 impl Group {
     /// Every group, in the order they run.
-    const ALL: [Group; 8] = [
+    const ALL: [Group; 9] = [
         Group::Reduction,
         Group::ChargedParticle,
         Group::WorkPrecision,
@@ -128,6 +133,7 @@ impl Group {
         Group::Scaling,
         Group::Dimension,
         Group::Ensemble,
+        Group::Rigid,
     ];
 
     /// The name on the command line and in the JSON output.
@@ -141,6 +147,7 @@ impl Group {
             Group::Scaling => "scaling",
             Group::Dimension => "dimension",
             Group::Ensemble => "ensemble",
+            Group::Rigid => "rigid",
         }
     }
 
@@ -154,6 +161,7 @@ impl Group {
             Group::Scaling => scaling::run(settings),
             Group::Dimension => dimension::run(settings),
             Group::Ensemble => ensemble::run(settings),
+            Group::Rigid => rigid::run(settings),
         }
     }
 }

@@ -317,3 +317,42 @@ fn initial_angular_velocity_is_mapped_to_momentum() {
     // The energy ½ ⟨Π, Ω⟩.
     assert!((a.energy.initial - 0.5 * (0.09 + 0.08 + 0.75)).abs() < 1e-15);
 }
+
+/// The examples' bodies at T = 10: the Dzhanibekov flip (examples/dzhanibekov.toml) and the heavy top
+/// released near upright (examples/heavy_top_upright.toml), order 8 at h = 0.01 against RK4 of
+/// Euler's equations converged to 1e-11.
+#[test]
+fn order_8_is_within_1e_8_of_the_converged_reference_on_the_examples() {
+    let c = 0.01f64.cos();
+    let s = 0.01f64.sin();
+    let upright = [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]];
+    let examples = [
+        (RigidBody::free(1.0, 2.0, 3.0), so3::identity(), [0.01, 4.0, 0.03]),
+        (RigidBody { inertia: [1.0, 1.3, 0.4], m: 1.0, g: 9.8, c: [0.0, 0.0, 0.5] }, upright, [0.0, 0.0, 0.8]),
+    ];
+    let method = Method { composition: Composition::select(Some(8), None).unwrap(), ..Method::default() };
+    for (body, r0, pi0) in examples {
+        // RK4 with 10⁵ and 2·10⁵ steps, agreeing to 1e-10 (the heavy top's motion is chaotic: round-off grows).
+        let x0 = Euler { r: r0, pi: pi0, s: 0.0 };
+        let reference = reference(&body, 0.0, 0.0, x0, 10.0, 200_000);
+        let coarse = gap(&self::reference(&body, 0.0, 0.0, x0, 10.0, 100_000), &reference);
+        assert!(coarse < 1e-10, "the reference itself is off by {coarse:e}");
+        let summary = run(&body, r0, pi0, 0.01, 10.0, &method);
+        let off = distance(&summary, &reference);
+        assert!(off < 1e-8, "{body:?}: order 8 is off by {off:e}");
+    }
+}
+
+/// 10⁵ steps of the free body and of the heavy top: the conserved quantities and RᵀR = I to 1e-12.
+#[test]
+fn a_hundred_thousand_steps_keep_the_invariants_to_1e_12() {
+    for (body, r0, pi0) in cases() {
+        let summary = run(&body, r0, pi0, 0.01, 1000.0, &Method::default());
+        assert_eq!(summary.steps, 100_000);
+        assert!(summary.momentum_map.max_relative_drift.unwrap() < 1e-12, "{:?}", summary.momentum_map);
+        if summary.symmetry == Symmetry::Rotations {
+            assert!(summary.casimir.max_relative_drift < 1e-12, "{:?}", summary.casimir);
+        }
+        assert!(summary.orthogonality < 1e-12, "{}", summary.orthogonality);
+    }
+}
