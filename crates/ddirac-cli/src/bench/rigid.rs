@@ -67,7 +67,7 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         };
         let summary = run().map_err(|e| miette::miette!("the rigid body's run failed: {e}"))?;
         errors.push((name.to_owned(), gap(summary.final_pi, exact)));
-        let mut timed = run;
+        let timed = run;
         contenders.push(Contender::new(name, steps, move || {
             std::hint::black_box(timed().map_err(|e| miette::miette!("{e}"))?);
             Ok(())
