@@ -239,8 +239,8 @@ pub fn simulate_rigid<'py>(
         return Err(raise("`every` must be at least 1"));
     }
     let plan = run_args.plan(handle, every)?;
-    let (mut t, mut r, mut pi, mut energy, mut j): (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) =
-        (vec![], vec![], vec![], vec![], vec![]);
+    let (mut t, mut r, mut pi): (Vec<f64>, Vec<f64>, Vec<f64>) = (vec![], vec![], vec![]);
+    let (mut energy, mut j): (Vec<f64>, Vec<f64>) = (vec![], vec![]);
     let (mut q, mut p): (Vec<f64>, Vec<f64>) = (vec![], vec![]);
     let n = RigidSystem::shape(&plan.body).len();
     let summary = watched(py, progress, |watch| {

@@ -194,11 +194,7 @@ fn shape_data(
 
 /// The rigid system of a `[system]` table: `attitude = "SO(3)"`, `symmetry`, no `group`, charts or
 /// exact solutions.
-fn text_system(
-    source: &SpecSource,
-    spec: &Spec,
-    table: &SystemTable,
-) -> Result<(String, RigidModel, Vec<(String, f64)>), Box<SpecError>> {
+fn text_system(source: &SpecSource, spec: &Spec, table: &SystemTable) -> Result<Named, Box<SpecError>> {
     let span = spec.system.span();
     let refuse = |at: Range<usize>, key: &str, why: &str| {
         Err(source
@@ -253,6 +249,9 @@ fn text_system(
     let name = table.name.as_ref().map_or_else(|| "custom".to_owned(), |n| n.get_ref().clone());
     Ok((name, RigidModel::Text(Box::new(system)), parameters))
 }
+
+/// A system with its name and its parameters with their values.
+type Named = (String, RigidModel, Vec<(String, f64)>);
 
 /// A body and all its parameters with their values, in the body's order.
 type BodyParameters = (RigidBody, Vec<(String, f64)>);

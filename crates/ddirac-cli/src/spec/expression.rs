@@ -99,6 +99,9 @@ pub fn build(
     Ok(Built { system, name, parameters: values, coordinates })
 }
 
+/// A rigid system of text with its parameters and their values, in the order written.
+pub type BuiltRigid = (ddirac::rigid::RigidExpressionSystem, Vec<(String, f64)>);
+
 /// The rigid system a `[system]` table with `attitude = "SO(3)"` defines (written at `span`), with the
 /// constants of `[parameters]`: its shape coordinates (none when `shape` is not given), its
 /// Lagrangian in `R11` … `R33`, `Omega1` … `Omega3`, the shape and its velocities, and `symmetry`.
@@ -108,7 +111,7 @@ pub fn build_rigid(
     table: &SystemTable,
     span: Range<usize>,
     symmetry: ddirac::rigid::Symmetry,
-) -> Result<(ddirac::rigid::RigidExpressionSystem, Vec<(String, f64)>), Box<SpecError>> {
+) -> Result<BuiltRigid, Box<SpecError>> {
     let declared = match (&table.shape, &table.angles, &table.order) {
         (None, None, None) => Declared { coordinates: vec![], spans: vec![] },
         _ => lists::coordinates(source, table, span.clone())?,

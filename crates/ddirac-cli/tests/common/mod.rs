@@ -233,12 +233,7 @@ pub fn gyrostat_rk4(
     let h = t / n as f64;
     let (mut r, mut pi) = (r0, pi0);
     let add = |r: &M3, pi: &[f64; 3], k: &(M3, [f64; 3]), a: f64| -> (M3, [f64; 3]) {
-        let mut rr = *r;
-        for i in 0..3 {
-            for j in 0..3 {
-                rr[i][j] += a * k.0[i][j];
-            }
-        }
+        let rr = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r[i][j] + a * k.0[i][j]));
         (rr, [0, 1, 2].map(|i| pi[i] + a * k.1[i]))
     };
     for _ in 0..n {
@@ -249,12 +244,11 @@ pub fn gyrostat_rk4(
         let k3 = field(&s3.0, &s3.1);
         let s4 = add(&r, &pi, &k3, h);
         let k4 = field(&s4.0, &s4.1);
-        for i in 0..3 {
-            for j in 0..3 {
-                r[i][j] += h / 6.0 * (k1.0[i][j] + 2.0 * k2.0[i][j] + 2.0 * k3.0[i][j] + k4.0[i][j]);
-            }
-            pi[i] += h / 6.0 * (k1.1[i] + 2.0 * k2.1[i] + 2.0 * k3.1[i] + k4.1[i]);
-        }
+        let (r0, pi0) = (r, pi);
+        r = [0, 1, 2].map(|i| {
+            [0, 1, 2].map(|j| r0[i][j] + h / 6.0 * (k1.0[i][j] + 2.0 * k2.0[i][j] + 2.0 * k3.0[i][j] + k4.0[i][j]))
+        });
+        pi = [0, 1, 2].map(|i| pi0[i] + h / 6.0 * (k1.1[i] + 2.0 * k2.1[i] + 2.0 * k3.1[i] + k4.1[i]));
     }
     (r, pi)
 }
