@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 
 use super::figure::{Figure, Panel, Series};
-use super::rigid_data::{gather, RigidData, RigidSummary, RIGID_BODY};
+use super::rigid_data::{gather, RigidData, RigidSummary};
 use super::rigid_spheres::{body_axes, momentum_sphere};
 use super::{save, ToolError};
 
@@ -41,7 +41,7 @@ fn invariants(summary: &RigidSummary, data: RigidData) -> Option<Figure> {
         (0, _) => "energy",
         _ => "energy and vertical angular momentum",
     };
-    let title = format!("{RIGID_BODY}: drift of the {names}");
+    let title = format!("{}: drift of the {names}", summary.name);
     (!panels.is_empty()).then(|| Figure::new("rigid_invariants", title, panels).subtitle(summary.description.clone()))
 }
 

@@ -16,9 +16,13 @@ pub const RIGID_BODY: &str = "rigid_body";
 
 /// What the figures need from a rigid body's `summary.json`.
 pub struct RigidSummary {
-    /// The principal moments of inertia I1, I2, I3.
-    pub inertia: [f64; 3],
-    /// Whether gravity acts (m g |c| ≠ 0): then |Π| is not conserved.
+    /// The system's name: `rigid_body`, or the name of a rigid system written as text.
+    pub name: String,
+    /// The principal moments of inertia I1, I2, I3 of the built-in body (none for a system of text,
+    /// whose energy need not be ½ Σ Πᵢ²/Iᵢ).
+    pub inertia: Option<[f64; 3]>,
+    /// Whether |Π| is not conserved: gravity acts on the built-in body (m g |c| ≠ 0), or a system of
+    /// text is not invariant under every rotation.
     pub heavy: bool,
     /// `SO(3)`, `vertical` or `none`.
     pub symmetry: String,
@@ -26,11 +30,11 @@ pub struct RigidSummary {
     pub description: String,
 }
 
-/// Whether `DIR/summary.json` is that of a rigid body's run (false if it cannot be read: the
-/// ordinary path reports why).
+/// Whether `DIR/summary.json` is that of a rigid system's run: its `attitude` is `SO(3)` (or it is
+/// the built-in body's); false if it cannot be read: the ordinary path reports why.
 pub fn is_rigid_run(dir: &Path) -> bool {
     let json = std::fs::read_to_string(dir.join(SUMMARY)).ok().and_then(|t| serde_json::from_str::<Value>(&t).ok());
-    json.is_some_and(|j| j["system"].as_str() == Some(RIGID_BODY))
+    json.is_some_and(|j| j["attitude"].as_str() == Some("SO(3)") || j["system"].as_str() == Some(RIGID_BODY))
 }
 
 impl RigidSummary {
@@ -43,20 +47,27 @@ impl RigidSummary {
             help: None,
         })?;
         let json: Value = serde_json::from_str(&text).map_err(|e| ToolError::malformed(&path, e.to_string()))?;
-        let parameter = |name: &str| {
-            json["parameters"][name]
-                .as_f64()
-                .ok_or_else(|| ToolError::malformed(&path, format!("no parameter `{name}`")))
-        };
-        let inertia = [parameter("I1")?, parameter("I2")?, parameter("I3")?];
-        let (m, g) = (parameter("m")?, parameter("g").unwrap_or(0.0));
-        let c = [parameter("c1").unwrap_or(0.0), parameter("c2").unwrap_or(0.0), parameter("c3").unwrap_or(0.0)];
-        let heavy = m * g * c.iter().map(|x| x * x).sum::<f64>().sqrt() != 0.0;
-        let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(", ");
-        let body = if heavy {
-            format!("I = ({}), m = {m}, g = {g}, c = ({})", list(&inertia), list(&c))
+        let name = json["system"].as_str().unwrap_or(RIGID_BODY).to_owned();
+        let symmetry = json["symmetry"].as_str().unwrap_or("none").to_owned();
+        let (inertia, heavy, body) = if name == RIGID_BODY {
+            let parameter = |name: &str| {
+                json["parameters"][name]
+                    .as_f64()
+                    .ok_or_else(|| ToolError::malformed(&path, format!("no parameter `{name}`")))
+            };
+            let inertia = [parameter("I1")?, parameter("I2")?, parameter("I3")?];
+            let (m, g) = (parameter("m")?, parameter("g").unwrap_or(0.0));
+            let c = [parameter("c1").unwrap_or(0.0), parameter("c2").unwrap_or(0.0), parameter("c3").unwrap_or(0.0)];
+            let heavy = m * g * c.iter().map(|x| x * x).sum::<f64>().sqrt() != 0.0;
+            let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(", ");
+            let body = if heavy {
+                format!("I = ({}), m = {m}, g = {g}, c = ({})", list(&inertia), list(&c))
+            } else {
+                format!("I = ({}), free body", list(&inertia))
+            };
+            (Some(inertia), heavy, body)
         } else {
-            format!("I = ({}), free body", list(&inertia))
+            (None, symmetry != "SO(3)", format!("symmetry {symmetry}"))
         };
         let method = &json["method"];
         let order = method["order"].as_u64().filter(|&o| o > 2).map_or(String::new(), |o| format!(", order {o}"));
@@ -67,8 +78,7 @@ impl RigidSummary {
             method["rule"].as_str().unwrap_or("?"),
             if method["reduced"].as_bool().unwrap_or(false) { "reduced by SO(3)" } else { "unreduced" },
         );
-        let symmetry = json["symmetry"].as_str().unwrap_or("none").to_owned();
-        Ok(Self { inertia, heavy, symmetry, description })
+        Ok(Self { name, inertia, heavy, symmetry, description })
     }
 
     /// The indices of the components of R Π its symmetry conserves.

@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use plotters::style::{RGBColor, BLACK};
 
 use super::figure::PALETTE;
-use super::rigid_data::{RigidData, RigidSummary, RIGID_BODY};
+use super::rigid_data::{RigidData, RigidSummary};
 use super::sphere::{dot, unit, Curve, Mark, SphereFigure, Stroke, Vec3, View};
 
 /// The oblique view: azimuth and elevation (radians) of the viewer, the third axis upward.
@@ -71,12 +71,17 @@ pub fn momentum_sphere(summary: &RigidSummary, data: &RigidData) -> SphereFigure
     let path = data.pi.clone().finish();
     let color = PALETTE[0];
     let mut curves = vec![];
+    let name = &summary.name;
     let title = if summary.heavy {
         curves.push(Curve { name: Some("Π/|Π|".into()), points: path.clone(), color, stroke: Stroke::Path });
-        format!("{RIGID_BODY}: Π/|Π| in the body frame (heavy body: no energy levels)")
+        if summary.inertia.is_some() {
+            format!("{name}: Π/|Π| in the body frame (heavy body: no energy levels)")
+        } else {
+            format!("{name}: Π/|Π| in the body frame")
+        }
     } else {
         let mut named = [false; 2];
-        for (points, separatrix, middle) in energy_levels(summary.inertia) {
+        for (points, separatrix, middle) in summary.inertia.map(energy_levels).unwrap_or_default() {
             let (stroke, name) = if separatrix {
                 (Stroke::Separatrix, format!("separatrix through ±e{}", SUBSCRIPTS[middle]))
             } else {
@@ -87,7 +92,7 @@ pub fn momentum_sphere(summary: &RigidSummary, data: &RigidData) -> SphereFigure
         }
         curves.push(Curve { name: Some("Π(t)/|Π₀|".into()), points: path.clone(), color, stroke: Stroke::Path });
         let size = data.pi0.iter().map(|x| x * x).sum::<f64>().sqrt();
-        format!("{RIGID_BODY}: body angular momentum Π on the sphere |Π| = {size:.4}")
+        format!("{name}: body angular momentum Π on the sphere |Π| = {size:.4}")
     };
     let mut marks = axis_marks(SUBSCRIPTS.map(|s| format!("e{s}")));
     marks.extend(ends(&path, color));
@@ -120,7 +125,10 @@ pub fn body_axes(summary: &RigidSummary, data: &RigidData) -> SphereFigure {
     let mut curves = vec![];
     for (i, axis) in data.axes.iter().enumerate() {
         let points = axis.clone().finish();
-        let name = format!("R e{0}, body axis {1} (I{0} = {2})", SUBSCRIPTS[i], i + 1, summary.inertia[i]);
+        let name = match summary.inertia {
+            Some(inertia) => format!("R e{0}, body axis {1} (I{0} = {2})", SUBSCRIPTS[i], i + 1, inertia[i]),
+            None => format!("R e{0}, body axis {1}", SUBSCRIPTS[i], i + 1),
+        };
         marks.extend(ends(&points, PALETTE[i]));
         curves.push(Curve { name: Some(name), points, color: PALETTE[i], stroke: Stroke::Path });
     }
@@ -129,7 +137,7 @@ pub fn body_axes(summary: &RigidSummary, data: &RigidData) -> SphereFigure {
         let at = unit(data.momentum0);
         marks.push(Mark { at, label: None, legend, color: PALETTE[3], radius: 7.0, hollow: false });
     }
-    let title = format!("{RIGID_BODY}: the body's axes in space, the columns of R");
+    let title = format!("{}: the body's axes in space, the columns of R", summary.name);
     let note = Some(note("space frame", &view));
     SphereFigure {
         name: "body_axes".into(),

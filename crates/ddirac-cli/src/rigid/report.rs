@@ -43,6 +43,8 @@ pub struct RigidSummaryJson<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     spec: Option<String>,
     system: &'a str,
+    /// `SO(3)`: the configuration holds an attitude R (what marks a rigid system's summary).
+    attitude: &'static str,
     parameters: report::Parameters<'a>,
     #[serde(skip_serializing_if = "<[String]>::is_empty")]
     shape: Vec<String>,
@@ -170,6 +172,7 @@ pub fn summary_json<'a>(
         ddirac_version: env!("CARGO_PKG_VERSION"),
         spec: spec.map(|s| s.display().to_string()),
         system: &plan.name,
+        attitude: "SO(3)",
         shape: super::shape_names(plan),
         parameters: report::Parameters(&plan.parameters),
         symmetry: summary.symmetry.name(),

@@ -118,6 +118,32 @@ fn a_heavy_body_has_no_energy_levels_and_conserves_the_vertical_momentum_only() 
     assert!(!invariants.iter().any(|t| t == "J_x − J_x(0)" || t.starts_with("|Π|")), "{invariants:?}");
 }
 
+/// A rigid system written as text (examples/satellite_rotors.toml) draws the same figures, named after
+/// it, without the energy levels of the built-in body (its energy is not ½ Σ Πᵢ²/Iᵢ): the run with
+/// `output.plots = true` failed with exit 4 ("no list of `coordinates`") before.
+#[test]
+fn a_rigid_system_written_as_text_draws_its_figures() {
+    let dir = TempDir::new("text-rigid-figures");
+    // Rotor 2 at rest: the body tumbles, and Π draws a long curve.
+    let sets = ["time.duration=12", "initial.v.a2=0.0", "output.plots=true"];
+    let output = common::run(&example("satellite_rotors.toml"), &sets, &dir);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let out = dir.out();
+    let sphere = check_figure(&out, "momentum_sphere", 990, &COLOURS[..1]);
+    assert!(sphere.iter().any(|t| t.starts_with("satellite with three rotors: body angular momentum Π")), "{sphere:?}");
+    assert!(!sphere.iter().any(|t| t.starts_with("separatrix") || t.starts_with("levels")), "{sphere:?}");
+    let axes = check_figure(&out, "body_axes", 990, &COLOURS);
+    assert!(axes.iter().any(|t| t == "R e₂, body axis 2"), "{axes:?}");
+    let invariants = check_figure(&out, "rigid_invariants", 1050, &COLOURS);
+    assert!(invariants.iter().any(|t| t.starts_with("satellite with three rotors: drift")), "{invariants:?}");
+    for f in figure_files(&out) {
+        std::fs::remove_file(out.join(f)).unwrap();
+    }
+    let output = ddirac(&["plot", out.to_str().unwrap()], &dir.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(figure_files(&out).len(), 6);
+}
+
 #[test]
 fn plot_refuses_a_rigid_body_trajectory_without_the_attitude() {
     let dir = TempDir::new("rigid-no-attitude");
