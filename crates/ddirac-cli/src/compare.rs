@@ -29,7 +29,18 @@ const RUNS: [&str; 2] = ["reduced", "unreduced"];
 
 /// Runs `options.spec` reduced and unreduced and compares them.
 pub fn compare(options: &RunOptions) -> Result<(), miette::Report> {
-    let loaded = run::load(&options.spec, &options.set)?;
+    let text = run::read(&options.spec)?;
+    if crate::rigid::names_rigid_body(&text, &options.set) {
+        let request = crate::rigid::Request {
+            spec: &options.spec,
+            set: &options.set,
+            out: options.out.as_deref(),
+            quiet: options.quiet,
+            format: &options.format,
+        };
+        return crate::rigid::compare::compare(&request, text);
+    }
+    let loaded = run::load_text(&options.spec, text, &options.set)?;
     loaded.print_notes();
     let Loaded { source, spec, mut plan, .. } = loaded;
     let formats =

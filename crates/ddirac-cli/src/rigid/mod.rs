@@ -3,9 +3,11 @@
 //! run), and what it writes ([`report`]): `trajectory.csv` with the columns `t`, `R11` … `R33`,
 //! `Pi1` … `Pi3`, `energy`, `momentum_x` … `momentum_z` (the spatial angular momentum R Π), the same
 //! columns as `npy/<column>.npy`, `summary.json` with `final.R` (three rows) and `final.Pi`, and
-//! with `output.plots = true` the figures of [`crate::plot`]'s rigid-body kind.
+//! with `output.plots = true` the figures of [`crate::plot`]'s rigid-body kind; `ddirac check`
+//! ([`check`]) and `ddirac run --compare` ([`compare`]) of the same specs.
 
 pub mod check;
+pub mod compare;
 pub mod plan;
 pub mod report;
 
@@ -83,14 +85,7 @@ pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<LoadedRigi
 pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), CliError> {
     let LoadedRigid { source, spec, plan } = load_text(request.spec, text, request.set)?;
     let formats = output::Formats::choose(request.format, spec.output.format.as_ref(), &source)?;
-    let dir = match (request.out, &plan.directory) {
-        (Some(out), _) => out.to_owned(),
-        (None, Some(d)) => PathBuf::from(d),
-        (None, None) => {
-            let stem = request.spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
-            Path::new("out").join(stem)
-        }
-    };
+    let dir = output_dir(request, &plan);
     let columns = report::columns(&shape_names(&plan));
     let estimate = estimate::Estimate::of(plan.problem.steps, plan.every, columns.len(), formats);
     let grid = (plan.problem.steps, plan.every);
@@ -99,17 +94,29 @@ pub fn run(request: &Request<'_>, text: String, started: Instant) -> Result<(), 
     let plots = spec.output.plots.as_ref().is_some_and(|p| *p.get_ref());
     let result = write_run(&source, &spec, &plan, request.spec, &dir, formats, plots, started, &mut progress);
     progress.finish();
-    let text = result?;
+    let (text, _) = result?;
     if !request.quiet {
         println!("{text}");
     }
     Ok(())
 }
 
+/// The output directory: `--out`, else `output.directory` of the spec, else `out/<spec file stem>`.
+pub fn output_dir(request: &Request<'_>, plan: &RigidPlan) -> PathBuf {
+    match (request.out, &plan.directory) {
+        (Some(out), _) => out.to_owned(),
+        (None, Some(d)) => PathBuf::from(d),
+        (None, None) => {
+            let stem = request.spec.file_stem().map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("out").join(stem)
+        }
+    }
+}
+
 /// Integrates and writes the trajectory and `summary.json` (and the figures, if `plots`) into `dir`;
-/// returns the human summary.
+/// returns the human summary and the library's.
 #[allow(clippy::too_many_arguments)]
-fn write_run(
+pub(crate) fn write_run(
     source: &SpecSource,
     spec: &spec::Spec,
     plan: &RigidPlan,
@@ -119,7 +126,7 @@ fn write_run(
     plots: bool,
     started: Instant,
     progress: &mut Progress,
-) -> Result<String, CliError> {
+) -> Result<(String, ddirac::rigid::RigidSummary), CliError> {
     let run_dir = RunDir::open(dir, &lock::command_line())?;
     let staging = run_dir.staging();
     let mut trajectory = Trajectory::with_columns(staging, &report::columns(&shape_names(plan)), formats)?;
@@ -151,7 +158,7 @@ fn write_run(
         text.push_str(&format!("\n  figures          {} (PNG and SVG)", drawn.len() / 2));
     }
     run_dir.commit(&files)?;
-    Ok(text)
+    Ok((text, summary))
 }
 
 /// The names of the plan's shape coordinates.

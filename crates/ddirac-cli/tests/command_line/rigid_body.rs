@@ -270,6 +270,39 @@ fn check_tests_the_declared_symmetry_and_gives_the_verdict_of_a_run() {
 }
 
 #[test]
+fn compare_runs_reduced_and_unreduced_and_refuses_a_heavy_body() {
+    let dir = TempDir::new("rigid-compare");
+    let out = dir.out();
+    let spec = common::example("satellite_rotors.toml");
+    let args = ["run", &spec, "--compare", "--out", out.to_str().unwrap(), "--set", "time.duration=2"];
+    let output = common::ddirac(&args, &dir.0);
+    assert!(output.status.success(), "{}", common::stderr(&output));
+    assert!(common::stdout(&output).contains("satellite with three rotors: reduced (by SO(3)) and unreduced runs"));
+    let table = std::fs::read_to_string(out.join("compare.csv")).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 16);
+    assert_eq!(header[..2], ["t", "d_R11"]);
+    assert_eq!(header[15], "d_a3");
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 21);
+    assert!(rows.iter().all(|r| r[1..].iter().all(|d| d.abs() < 1e-12)));
+    for run in ["reduced", "unreduced"] {
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(run).join("summary.json")).unwrap()).unwrap();
+        assert_eq!(summary["method"]["reduced"], run == "reduced");
+    }
+    assert!(out.join("compare.png").is_file() && out.join("compare.svg").is_file());
+    // A heavy body cannot be reduced by SO(3): refused before anything runs.
+    let dir = TempDir::new("rigid-compare-heavy");
+    let out = dir.out();
+    let spec = common::example("heavy_top_upright.toml");
+    let output = common::ddirac(&["run", &spec, "--compare", "--out", out.to_str().unwrap()], &dir.0);
+    assert_fails(&output, &dir, &["--compare runs the reduced equations too", "`vertical`"]);
+    assert_eq!(output.status.code(), Some(2));
+}
+
+#[test]
 fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
     let dir = TempDir::new("rigid-convergence");
     let spec = dir.file("free.toml", FREE);
