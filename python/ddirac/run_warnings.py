@@ -68,8 +68,10 @@ class UnderResolvedWarning(RunWarning):
 
 
 class SingularChartWarning(RunWarning):
-    """``singular_chart``: an angle turned by more than 1 rad in one step where the Legendre map has
-    become near-singular: the coordinates are singular nearby (a pole of spherical coordinates, say)."""
+    """``singular_chart``: an angle's advance in one step was not resolved (more than 1 rad, or its
+    rate changed by more than half within the step at several times its typical advance) where the
+    Legendre map has become near-singular: the coordinates are singular nearby (a pole of spherical
+    coordinates, the upright attitude in Euler angles, say)."""
 
 
 class EnergyDriftWarning(RunWarning):

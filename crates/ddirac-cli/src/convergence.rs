@@ -127,29 +127,104 @@ pub struct Stability {
     pub order: f64,
 }
 
+/// What a study needs of its spec: the system's name, the method in words, the duration T, the kinds
+/// of the entries of the final configuration, the output directory, and a run with N steps.
+struct Study<'a> {
+    name: String,
+    method: String,
+    duration: f64,
+    kinds: Vec<CoordinateKind>,
+    dir: PathBuf,
+    integrate: Box<RunWith<'a>>,
+}
+
+/// A run with N steps: `(N, progress, steps done before it, label)`.
+type RunWith<'a> = dyn FnMut(u64, &mut Progress, u64, &str) -> Result<Outcome, miette::Report> + 'a;
+
+/// T = N h of a spec, cleaned of the last-bit error of the product (2 / 10⁴ × 10⁴ is not 2), so that
+/// h = T/N is the step `ddirac run --set time.steps=N` takes.
+fn cleaned(duration: f64) -> f64 {
+    format!("{duration:.14e}").parse().unwrap_or(duration)
+}
+
+/// The study of a spec in coordinates: the final configuration is q_N.
+fn in_coordinates(options: &Options) -> Result<Study<'static>, miette::Report> {
+    let loaded = run::load(&options.spec, &options.set)?;
+    loaded.print_notes();
+    let Loaded { mut plan, .. } = loaded;
+    let m = &plan.method;
+    let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
+    let duration = cleaned(plan.problem.duration());
+    Ok(Study {
+        name: plan.name.clone(),
+        method,
+        duration,
+        kinds: plan.system.coordinates().iter().map(|c| c.kind).collect(),
+        dir: run::output_dir(options.out.as_deref(), &plan, &options.spec),
+        integrate: Box::new(move |n, progress, done, label| integrate(&mut plan, n, duration, progress, done, label)),
+    })
+}
+
+/// The study of a rigid system's spec: the final configuration is (R_N, s_N), the nine entries of the
+/// attitude (rows) and the shape, so that the error is the Frobenius distance of the attitudes
+/// together with that of the shapes.
+fn rigid(options: &Options, text: String) -> Result<Study<'static>, miette::Report> {
+    let crate::rigid::LoadedRigid { plan, .. } = crate::rigid::load_text(&options.spec, text, &options.set)?;
+    let m = &plan.method;
+    let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
+    let duration = cleaned(plan.problem.step * plan.problem.steps as f64);
+    let shape = ddirac::rigid::RigidSystem::shape(&plan.body);
+    let kinds = std::iter::repeat_n(CoordinateKind::Real, 9).chain(shape.iter().map(|c| c.kind)).collect();
+    let request = crate::rigid::Request {
+        spec: &options.spec,
+        set: &options.set,
+        out: options.out.as_deref(),
+        quiet: true,
+        format: &[],
+    };
+    let dir = crate::rigid::output_dir(&request, &plan);
+    let integrate = move |n: u64, progress: &mut Progress, done: u64, label: &str| {
+        let mut problem = plan.problem.clone();
+        problem.steps = n as usize;
+        problem.step = duration / n as f64;
+        progress.stage(done, label);
+        let failed = |e: ddirac::Error| {
+            miette::Report::new(CliError::Integration(e)).wrap_err(format!("the run with {label} failed"))
+        };
+        let mut stepper = ddirac::rigid::RigidStepper::new(&plan.body, problem, &plan.method).map_err(failed)?;
+        while !stepper.is_finished() {
+            stepper.step().map_err(failed)?;
+            progress.update(stepper.k());
+        }
+        let summary = stepper.summary();
+        crate::report::print_warnings(&summary.warnings);
+        let final_q = summary.final_r.iter().flatten().chain(&summary.final_s).copied().collect();
+        Ok(Outcome { reference_error: None, final_q, wall_seconds: summary.wall_seconds })
+    };
+    Ok(Study { name: plan.name.clone(), method, duration, kinds, dir, integrate: Box::new(integrate) })
+}
+
 /// Runs the convergence study and prints its table.
 pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     let started = Instant::now();
-    let loaded = run::load(&options.spec, &options.set)?;
-    loaded.print_notes();
-    let Loaded { plan, .. } = loaded;
-    let mut plan = plan;
+    let spec_text = run::read(&options.spec)?;
+    let Study { name, method, duration, kinds, dir, integrate: mut integrate_n } =
+        if crate::rigid::names_rigid_body(&spec_text, &options.set) {
+            rigid(options, spec_text)?
+        } else {
+            in_coordinates(options)?
+        };
     let mut steps = options.steps.clone();
     steps.sort_unstable();
     steps.dedup();
-    // T = N h of the spec, cleaned of the last-bit error of the product (2 / 10⁴ × 10⁴ is not 2),
-    // so that h = T/N is the step `ddirac run --set time.steps=N` takes.
-    let duration: f64 = format!("{:.14e}", plan.problem.duration()).parse().unwrap_or(plan.problem.duration());
-    let kinds: Vec<CoordinateKind> = plan.system.coordinates().iter().map(|c| c.kind).collect();
     // The output directory is this study's while it lasts; its files replace the earlier ones as a set.
-    let dir = run::output_dir(options.out.as_deref(), &plan, &options.spec);
     let run_dir = RunDir::open(&dir, &lock::command_line())?;
 
     let mut progress = Progress::new(steps.iter().sum(), options.quiet);
     let mut outcomes: Vec<Outcome> = vec![];
     let mut done = 0;
     for &n in &steps {
-        outcomes.push(integrate(&mut plan, n, duration, &mut progress, done, &format!("N = {n}"))?);
+        outcomes.push(integrate_n(n, &mut progress, done, &format!("N = {n}"))?);
         done += n;
     }
     progress.finish();
@@ -174,7 +249,7 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
             }
         })?;
         let mut progress = Progress::new(n, options.quiet);
-        let outcome = integrate(&mut plan, n, duration, &mut progress, 0, &format!("reference N = {n}"))?;
+        let outcome = integrate_n(n, &mut progress, 0, &format!("reference N = {n}"))?;
         progress.finish();
         Reference::Run { steps: n, outcome }
     };
@@ -182,14 +257,12 @@ pub fn convergence(options: &Options) -> Result<(), miette::Report> {
     let rows = table(&steps, duration, &outcomes, &reference, &kinds);
     let staging = run_dir.staging().to_owned();
     write_csv(&staging.join(TABLE), &rows, &reference)?;
-    let figures = plot::save(&figure(&plan.name, duration, &rows, &reference), &staging)?;
+    let figures = plot::save(&figure(&name, duration, &rows, &reference), &staging)?;
     let mut files = vec![PathBuf::from(TABLE)];
     files.extend(figures.iter().filter_map(|p| p.strip_prefix(&staging).ok()).map(PathBuf::from));
     run_dir.commit(&files)?;
     if !options.quiet {
-        let m = &plan.method;
-        let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
-        println!("{}", text(&plan.name, &method, duration, &rows, &reference));
+        println!("{}", text(&name, &method, duration, &rows, &reference));
         println!("  table      {}", dir.join(TABLE).display());
         println!("  figure     convergence.png, convergence.svg in {}", dir.display());
         println!("  wall time  {:.3} s", started.elapsed().as_secs_f64());

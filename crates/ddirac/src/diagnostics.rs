@@ -168,8 +168,9 @@ pub enum WarningKind {
     /// half within the step — where the Legendre map is not near-singular: the step does not resolve
     /// the motion.
     UnderResolved,
-    /// An angle's advance in one step was not resolved (as for [`WarningKind::UnderResolved`]) where
-    /// the Legendre map ∂²L/∂v² has become near-singular, or a step needed sub-steps there: the
+    /// An angle's advance in one step was not resolved (as for [`WarningKind::UnderResolved`], or
+    /// a soft kick of more than [`crate::SOFT_KICK`] times its typical advance) where the Legendre map
+    /// ∂²L/∂v² has become near-singular, or a step needed sub-steps there: the
     /// coordinates are singular there (a pole of spherical coordinates), and the trajectory near it
     /// cannot be trusted.
     SingularChart,

@@ -89,6 +89,6 @@ pub use scalar::{RuntimeInput, Scalar};
 pub use sizes::{sizes_text, SIZES};
 pub use stepper::{
     OwnedRow, OwnedRowIn, State, StateIn, StepReport, Stepper, StepperIn, IMPLAUSIBLE_ENERGY_CHANGE, KICK,
-    LEGENDRE_DROP, LOOSE_TOLERANCE_MARGIN, MAX_ANGLE_STEP, MAX_SUBDIVISION, WATCH_STEPS,
+    LEGENDRE_DROP, LOOSE_TOLERANCE_MARGIN, MAX_ANGLE_STEP, MAX_SUBDIVISION, SOFT_KICK, WATCH_STEPS,
 };
 pub use system::{Chart, System};

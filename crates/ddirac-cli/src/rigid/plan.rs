@@ -8,7 +8,9 @@
 
 use std::ops::Range;
 
-use ddirac::rigid::{RigidExpressionSystem, RigidInitial, RigidProblem, RigidSystem, Symmetry, ROTATION_TOLERANCE};
+use ddirac::rigid::{
+    PrincipalAxes, RigidExpressionSystem, RigidInitial, RigidProblem, RigidSystem, Symmetry, ROTATION_TOLERANCE,
+};
 use ddirac::systems::{Parameters, RigidBody};
 use ddirac::{Coordinate, Error, InitialMomentum, Input, Method, Scalar};
 use toml::Spanned;
@@ -44,6 +46,13 @@ impl RigidSystem for RigidModel {
         match self {
             RigidModel::Body(b) => b.symmetry(),
             RigidModel::Text(t) => t.symmetry(),
+        }
+    }
+
+    fn principal_axes(&self) -> Option<PrincipalAxes> {
+        match self {
+            RigidModel::Body(b) => b.principal_axes(),
+            RigidModel::Text(t) => t.principal_axes(),
         }
     }
 }

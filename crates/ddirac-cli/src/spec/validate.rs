@@ -43,56 +43,59 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
     };
     // The span of each coordinate's name in a `[system]` table.
     let mut declared: Vec<(String, Range<usize>)> = vec![];
-    let (name, system, parameters) =
-        match spec.system.get_ref() {
-            SystemRef::BuiltIn(name) if name == super::RIGID_BODY => return Err(source
+    let (name, system, parameters) = match spec.system.get_ref() {
+        SystemRef::BuiltIn(name) if name == super::RIGID_BODY => {
+            return Err(source
                 .error(Some(spec.system.span()), "this command does not take the rigid body yet", "a rigid body")
                 .with_help(
-                    "`ddirac run` runs `rigid_body` (also with `--compare`), `ddirac check` checks it, and Python's \
-                     `ddirac.simulate` runs it; ensembles and convergence studies take the systems in coordinates \
-                     (`ddirac systems`)",
-                )),
-            SystemRef::BuiltIn(name) => {
-                let built_in = built_in(source, name, spec.system.span())?;
-                let (parameters, overrides) = parameters(source, spec, built_in, &mut spans)?;
-                let system = (built_in.build)(&overrides).map_err(|e| {
-                    let (span, label) = spans.locate(&e).map_or((None, ""), |(s, l)| (Some(s), l));
-                    source.error(span, e.to_string(), label)
-                })?;
-                (built_in.name.to_owned(), system, parameters)
-            }
-            SystemRef::Expression(table) if table.attitude.is_some() => return Err(source
+                    "`ddirac run` runs `rigid_body` (also with `--compare`), `ddirac check` checks it, `ddirac \
+                     convergence` studies it, and Python's `ddirac.simulate` runs it; ensembles take the systems in \
+                     coordinates (`ddirac systems`)",
+                ))
+        }
+        SystemRef::BuiltIn(name) => {
+            let built_in = built_in(source, name, spec.system.span())?;
+            let (parameters, overrides) = parameters(source, spec, built_in, &mut spans)?;
+            let system = (built_in.build)(&overrides).map_err(|e| {
+                let (span, label) = spans.locate(&e).map_or((None, ""), |(s, l)| (Some(s), l));
+                source.error(span, e.to_string(), label)
+            })?;
+            (built_in.name.to_owned(), system, parameters)
+        }
+        SystemRef::Expression(table) if table.attitude.is_some() => {
+            return Err(source
                 .error(Some(spec.system.span()), "this command does not take rigid systems yet", "a rigid system")
                 .with_help(
-                    "`ddirac run` (also with `--compare`) and `ddirac check` take a `[system]` with an `attitude`, \
-                     and Python's `ddirac.RigidBody` and `ddirac.simulate`; ensembles and convergence studies \
+                    "`ddirac run` (also with `--compare`), `ddirac check` and `ddirac convergence` take a \
+                     `[system]` with an `attitude`, and Python's `ddirac.RigidBody` and `ddirac.simulate`; ensembles \
                      take the systems in coordinates",
-                )),
-            SystemRef::Expression(table) => {
-                if let Some(symmetry) = &table.symmetry {
-                    return Err(source
-                        .error(Some(symmetry.span()), "`system.symmetry` belongs to rigid systems", "no attitude here")
-                        .with_help(
-                            "a system in coordinates lists the coordinates its symmetry translates in `group`; \
+                ))
+        }
+        SystemRef::Expression(table) => {
+            if let Some(symmetry) = &table.symmetry {
+                return Err(source
+                    .error(Some(symmetry.span()), "`system.symmetry` belongs to rigid systems", "no attitude here")
+                    .with_help(
+                        "a system in coordinates lists the coordinates its symmetry translates in `group`; \
                         `symmetry` declares the rotations leaving a rigid system (`attitude = \"SO(3)\"`) invariant",
-                        ));
-                }
-                let built = expression::build(source, spec, table, spec.system.span())?;
-                spans.angles = table
-                    .angles
-                    .as_ref()
-                    .map(|list| list.get_ref().iter().map(|a| (a.get_ref().clone(), a.span())).collect())
-                    .unwrap_or_default();
-                let coordinates = built.system.coordinates();
-                declared.clone_from(&built.coordinates);
-                spans.group = built
-                    .coordinates
-                    .into_iter()
-                    .filter(|(n, _)| coordinates.iter().any(|c| &c.name == n && c.role == Role::Group))
-                    .collect();
-                (built.name, built.system, built.parameters)
+                    ));
             }
-        };
+            let built = expression::build(source, spec, table, spec.system.span())?;
+            spans.angles = table
+                .angles
+                .as_ref()
+                .map(|list| list.get_ref().iter().map(|a| (a.get_ref().clone(), a.span())).collect())
+                .unwrap_or_default();
+            let coordinates = built.system.coordinates();
+            declared.clone_from(&built.coordinates);
+            spans.group = built
+                .coordinates
+                .into_iter()
+                .filter(|(n, _)| coordinates.iter().any(|c| &c.name == n && c.role == Role::Group))
+                .collect();
+            (built.name, built.system, built.parameters)
+        }
+    };
     let coordinates = system.coordinates();
     distinct_columns(source, &coordinates, &declared, spec.system.span())?;
     let method = method(source, spec, &coordinates, &mut spans)?;

@@ -302,11 +302,54 @@ fn compare_runs_reduced_and_unreduced_and_refuses_a_heavy_body() {
     assert_eq!(output.status.code(), Some(2));
 }
 
+/// `ddirac convergence` of a rigid body: the error of R_N (its nine entries, Frobenius) against the
+/// reference run; checked against RK4 of Euler's equations: the table's error of each row is within
+/// the reference run's own error of the distance of that row's R_N from RK4, and the order is 2.
+#[test]
+fn a_convergence_study_of_a_rigid_body_observes_order_2_against_rk4() {
+    let dir = TempDir::new("rigid-convergence");
+    let spec = dir.file("free.toml", &FREE.replace("order = 4", "order = 2"));
+    let out = dir.out();
+    let steps = [250usize, 500, 1000];
+    let output = common::ddirac(
+        &["convergence", &spec, "--steps", "250,500,1000", "--out", out.to_str().unwrap(), "--quiet"],
+        &dir.0,
+    );
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let table = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let rows: Vec<Vec<String>> = table.lines().skip(1).map(|l| l.split(',').map(str::to_owned).collect()).collect();
+    assert_eq!(rows.len(), 3, "{table}");
+    let (exact_r, _) = euler_rk4(
+        [1.0, 2.0, 3.0],
+        [0.0; 3],
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        [0.01, 4.0, 0.03],
+        5.0,
+        200_000,
+    );
+    let mut errors = vec![];
+    for (row, &n) in rows.iter().zip(&steps) {
+        assert_eq!(row[0].parse::<usize>().unwrap(), n);
+        let error: f64 = row[2].parse().unwrap();
+        // The same run by `ddirac run`, against RK4.
+        let run_dir = TempDir::new(&format!("rigid-convergence-{n}"));
+        let finished = succeed(&spec, &[&format!("time.step={:?}", 5.0 / n as f64)], &run_dir);
+        let (r, _) = final_state(&finished.summary);
+        let to_rk4 = (0..9).map(|k| (r[k / 3][k % 3] - exact_r[k / 3][k % 3]).powi(2)).sum::<f64>().sqrt();
+        assert!((error - to_rk4).abs() < 0.05 * to_rk4, "N = {n}: table {error:e}, against RK4 {to_rk4:e}");
+        errors.push(error);
+    }
+    for pair in errors.windows(2) {
+        let order = (pair[0] / pair[1]).log2();
+        assert!((order - 2.0).abs() < 0.1, "observed order {order}");
+    }
+}
+
 #[test]
 fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
-    let dir = TempDir::new("rigid-convergence");
+    let dir = TempDir::new("rigid-ensemble");
     let spec = dir.file("free.toml", FREE);
-    let output = common::ddirac(&["convergence", &spec, "--steps", "10,20"], &dir.0);
+    let output = common::ddirac(&["ensemble", &spec, "--out", dir.out().to_str().unwrap()], &dir.0);
     assert_fails(&output, &dir, &["this command does not take the rigid body yet", "`ddirac run` runs `rigid_body`"]);
     // And a system in coordinates refuses the rigid body's keys.
     let spec = dir.file(

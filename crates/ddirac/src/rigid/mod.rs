@@ -42,6 +42,7 @@ mod discrete_lagrangian;
 mod expression_system;
 mod invariance;
 mod legendre;
+mod principal_axes;
 mod problem;
 pub mod so3;
 mod step;
@@ -52,7 +53,7 @@ pub use expression_system::RigidExpressionSystem;
 pub use invariance::{test_symmetry, INVARIANCE_TOLERANCE};
 pub use problem::{RigidInitial, RigidProblem, ROTATION_TOLERANCE};
 pub use stepper::{Casimir, RigidRow, RigidStepper, RigidSummary};
-pub use system::{RigidSystem, Symmetry};
+pub use system::{PrincipalAxes, RigidSystem, Symmetry};
 
 use crate::{Error, Method};
 

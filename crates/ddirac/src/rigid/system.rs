@@ -40,6 +40,16 @@ impl Symmetry {
     }
 }
 
+/// ℓ(R, Ω) = ½ ⟨Ω, 𝕀 Ω⟩ − ⟨e3, R w⟩ with 𝕀 = diag(`moments`) and w = `weight` (m g c for a body of mass
+/// m in gravity −g e3 with its centre of mass at c in the body frame), and no shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrincipalAxes {
+    /// The principal moments (I1, I2, I3), all positive.
+    pub moments: [f64; 3],
+    /// w = m g c: the potential is ⟨e3, R w⟩.
+    pub weight: [f64; 3],
+}
+
 /// A system whose configuration is an attitude R ∈ SO(3) (body to space) and shape coordinates.
 ///
 /// The Lagrangian is generic over the scalar, so that dual numbers give every derivative. A free
@@ -69,6 +79,16 @@ pub trait RigidSystem: Send + Sync {
 
     /// The rotations of space the Lagrangian is invariant under. The check tests it before a run.
     fn symmetry(&self) -> Symmetry;
+
+    /// Where ℓ(R, Ω) = ½ ⟨Ω, 𝕀 Ω⟩ − ⟨e3, R w⟩ with 𝕀 = diag(I1, I2, I3) and no shape (a body in
+    /// principal axes whose weight w = m g c pulls at its centre of mass c), the moments and w: the
+    /// steps are then solved with their derivatives in closed form, on the stack, about two orders of
+    /// magnitude faster than with dual numbers, to the same equations. A run tests the claim against
+    /// [`RigidSystem::lagrangian`] and refuses a system whose Lagrangian differs. `None` (the default)
+    /// differentiates the Lagrangian with dual numbers.
+    fn principal_axes(&self) -> Option<PrincipalAxes> {
+        None
+    }
 }
 
 impl<S: RigidSystem> RigidSystem for &S {
@@ -82,5 +102,9 @@ impl<S: RigidSystem> RigidSystem for &S {
 
     fn symmetry(&self) -> Symmetry {
         (**self).symmetry()
+    }
+
+    fn principal_axes(&self) -> Option<PrincipalAxes> {
+        (**self).principal_axes()
     }
 }

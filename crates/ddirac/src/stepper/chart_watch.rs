@@ -16,6 +16,17 @@
 //!   Legendre map ∂²L/∂v² is ([`legendre::conditioning`], one evaluation of its Hessian), against the
 //!   start of the run: near a pole of spherical coordinates its smallest pivot falls like sin²θ,
 //!   along the azimuth.
+//!
+//! A step can also cross a singular set without a kick: the discrete motion goes straight through
+//! the singular point of the coordinates while the flow turns around it (Euler angles (φ, θ, ψ) of
+//! a top passing 3e-4 rad from upright at h = 0.01: θ changes sign, φ and ψ advance 4–20 times their
+//! typical amount with rates that change by more than half in a step, where the flow turns each by
+//! about π in 1e-4 s). So a *soft kick* — the same test with [`SOFT_KICK`] in place of [`KICK`] —
+//! is reported when the Legendre map at the step has fallen below [`LEGENDRE_DROP`] of its value at
+//! the start as well, and is otherwise an ordinary step (it counts towards the typical advance): away
+//! from a singular set a rate that changes by half within a step is a fast but resolved motion, while
+//! near one it is the start of a passage the step does not resolve (the azimuth of a spherical
+//! pendulum with a small L_z, which doubles its rate from step to step on its way to the pole).
 
 use crate::dim::Dim;
 use crate::mechanics::lagrangian::SystemIn;
@@ -33,6 +44,11 @@ pub const LEGENDRE_DROP: f64 = 1e-2;
 /// How many times an angle's typical advance (its mean over the run's earlier steps) a step's advance
 /// must exceed to count as a kick.
 pub const KICK: f64 = 100.0;
+
+/// How many times an angle's typical advance a step's advance must exceed, with its rate changing by
+/// more than half within the step, to count as a soft kick: reported only where the Legendre map
+/// is near-singular as well (module documentation).
+pub const SOFT_KICK: f64 = 3.0;
 
 /// An advance (radians) below which no kick is reported: it moves a point of a unit sphere by less
 /// than a millionth of the radius.
@@ -66,13 +82,15 @@ impl<Dm: Dim> Clone for AngleWatch<Dm> {
     }
 }
 
-/// An angle whose advance the step did not resolve: which, by how much, and how many times its
-/// typical advance (`None` while there is none yet).
+/// An angle whose advance the step did not resolve: which, by how much, how many times its typical
+/// advance (`None` while there is none yet), and whether only as a soft kick (to be confirmed by the
+/// Legendre map).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Unresolved {
     pub(super) angle: usize,
     pub(super) by: f64,
     pub(super) times_typical: Option<f64>,
+    pub(super) soft: bool,
 }
 
 impl<Dm: Dim> AngleWatch<Dm> {
@@ -84,22 +102,22 @@ impl<Dm: Dim> AngleWatch<Dm> {
     }
 
     /// Takes the step `dq` and says whether an angle's advance was not resolved: more than
-    /// [`MAX_ANGLE_STEP`], or a kick. Branch-free over the angles: it runs every step.
+    /// [`MAX_ANGLE_STEP`], a kick, or a soft kick. Branch-free over the angles: it runs every step.
     #[inline(always)]
     pub(super) fn watch(&mut self, dq: &Dm::Array<f64>) -> Option<Unresolved> {
         let steps = self.steps as f64;
         let warm = self.steps >= WARM_UP;
-        let mut unresolved = false;
+        let (mut unresolved, mut soft) = (false, false);
         for &i in &self.angles {
             let (advance, last) = (dq[i], self.last[i]);
             let size = advance.abs();
-            let kick = warm
-                & (size * steps > KICK * self.sum[i])
-                & ((advance - last).abs() > 0.5 * size.max(last.abs()))
-                & (size > NEGLIGIBLE_ADVANCE);
-            unresolved |= kick | (size > MAX_ANGLE_STEP);
+            let turned = warm & ((advance - last).abs() > 0.5 * size.max(last.abs())) & (size > NEGLIGIBLE_ADVANCE);
+            unresolved |= (turned & (size * steps > KICK * self.sum[i])) | (size > MAX_ANGLE_STEP);
+            soft |= turned & (size * steps > SOFT_KICK * self.sum[i]);
         }
-        let found = unresolved.then(|| self.unresolved(dq));
+        let found = (unresolved | soft).then(|| Unresolved { soft: !unresolved, ..self.unresolved(dq) });
+        // A soft kick is an ordinary step unless the Legendre map confirms it: it counts towards the
+        // typical advance.
         let counted = if unresolved { 0.0 } else { 1.0 };
         for &i in &self.angles {
             self.last[i] = dq[i];
@@ -126,7 +144,7 @@ impl<Dm: Dim> AngleWatch<Dm> {
         let angle = self.angles.iter().copied().max_by(|&i, &j| order(i, j)).unwrap_or(0);
         let by = dq[angle];
         let times_typical = typical(angle).filter(|t| *t > 0.0).map(|t| by.abs() / t);
-        Unresolved { angle, by, times_typical }
+        Unresolved { angle, by, times_typical, soft: false }
     }
 }
 

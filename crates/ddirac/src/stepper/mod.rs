@@ -34,7 +34,7 @@ use crate::setup::{first_increment, Setup};
 use crate::{newton, Connection, CoordinateKind, DiscreteLagrangian, Error, Input, Method, Problem, Split};
 
 pub use atlas::{Stepper, StepperIn};
-pub use chart_watch::{KICK, LEGENDRE_DROP, MAX_ANGLE_STEP};
+pub use chart_watch::{KICK, LEGENDRE_DROP, MAX_ANGLE_STEP, SOFT_KICK};
 pub use progress::IMPLAUSIBLE_ENERGY_CHANGE;
 use progress::{jumped, Progress};
 pub use resolution::LOOSE_TOLERANCE_MARGIN;

@@ -497,8 +497,9 @@ impl<Dm: Dim> Progress<Dm> {
         let t = k as f64 * h;
         let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed } = taken;
         if let Some(unresolved) = self.angles.watch(&dq) {
-            let warning = self.fast_angle(context, &dq, unresolved);
-            self.record.warnings.push(warning);
+            if let Some(warning) = self.fast_angle(context, &dq, unresolved) {
+                self.record.warnings.push(warning);
+            }
         }
         let record = &mut self.record;
         if Resolution::<Dm>::watches(method.newton.tolerance) {
@@ -557,19 +558,30 @@ impl<Dm: Dim> Progress<Dm> {
         Ok(StepReport { k, discrete_energy, newton: stats })
     }
 
-    /// The warning for an angle whose advance in the step `dq` from q_k the step did not resolve.
+    /// The warning for an angle whose advance in the step `dq` from q_k the step did not resolve; none
+    /// for a soft kick where the Legendre map is regular.
     #[cold]
     fn fast_angle<S: SystemIn<Dm>>(
         &self,
         context: &Context<S, Dm>,
         dq: &Dm::Array<f64>,
         unresolved: chart_watch::Unresolved,
-    ) -> Warning {
-        let chart_watch::Unresolved { angle, by, times_typical } = unresolved;
+    ) -> Option<Warning> {
+        let chart_watch::Unresolved { angle, by, times_typical, soft } = unresolved;
+        let singular = singular_chart(context, self.config.base(), dq);
+        if soft && singular.is_none() {
+            return None;
+        }
         let coordinates = context.system.coordinates();
         let name = &coordinates[angle].name;
         let at = Some((self.k, self.k as f64 * context.h));
-        let advanced = if by.abs() > chart_watch::MAX_ANGLE_STEP {
+        let advanced = if soft {
+            let times = times_typical.map_or(String::new(), |r| format!(", {r:.1e} times its typical advance"));
+            format!(
+                "the step does not resolve the motion where the chart is singular (`{name}` advanced by {by:.3e} \
+                 rad{times}, its rate changing by more than half within the step)"
+            )
+        } else if by.abs() > chart_watch::MAX_ANGLE_STEP {
             format!("`{name}` advanced by {by:.3} rad in one step (more than {} rad)", chart_watch::MAX_ANGLE_STEP)
         } else {
             let times = times_typical.map_or(String::new(), |r| format!(", {r:.1e} times its typical advance,"));
@@ -578,7 +590,7 @@ impl<Dm: Dim> Progress<Dm> {
                  the step"
             )
         };
-        match singular_chart(context, self.config.base(), dq) {
+        Some(match singular {
             Some(cause) => Warning::new(
                 WarningKind::SingularChart,
                 at,
@@ -591,7 +603,7 @@ impl<Dm: Dim> Progress<Dm> {
                 at,
                 format!("{advanced}: the step does not resolve the motion (try a smaller step)"),
             ),
-        }
+        })
     }
 }
 

@@ -11,7 +11,7 @@
 //! Π̇ = Π × Ω + m g (Γ × c), Γ = Rᵀ e3, Ṙ = R Ω̂ are its motion.
 
 use crate::rigid::so3::Matrix3;
-use crate::rigid::{RigidSystem, Symmetry};
+use crate::rigid::{PrincipalAxes, RigidSystem, Symmetry};
 use crate::{Error, Scalar};
 
 /// The rigid body `rigid_body`.
@@ -83,6 +83,11 @@ impl RigidSystem for RigidBody {
         // ⟨e3, R c⟩ = the third row of R times c.
         let height = r[2][0] * self.c[0] + r[2][1] * self.c[1] + r[2][2] * self.c[2];
         kinetic - height * (self.m * self.g)
+    }
+
+    fn principal_axes(&self) -> Option<PrincipalAxes> {
+        let weight = if self.is_heavy() { self.c.map(|c| self.m * self.g * c) } else { [0.0; 3] };
+        Some(PrincipalAxes { moments: self.inertia, weight })
     }
 
     fn symmetry(&self) -> Symmetry {

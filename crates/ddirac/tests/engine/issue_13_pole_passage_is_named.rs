@@ -46,15 +46,22 @@ fn a_racing_azimuth_near_the_pole_is_reported_as_a_singular_chart_with_time_and_
     assert_eq!(warning.kind.name(), "singular_chart");
     let (k, t) = (warning.step.expect("a step"), warning.t.expect("a time"));
     assert!(warning.message.contains("near-singular here") && warning.message.contains("along `phi`"));
-    // The warning is about the step where φ races (by more than the limit in one step), or whose
-    // energy jumped so that it was taken as sub-steps (issue 14); either way θ is near 0 there.
+    // The warning is about the step where φ races (by more than the limit in one step), or one on
+    // the way to the pole whose rate of φ changed by more than half in the step (a soft kick), or
+    // whose energy jumped so that it was taken as sub-steps (issue 14); either way θ is near 0 there.
     let dphi = solution.q[k + 1][1] - solution.q[k][1];
-    if warning.message.contains("`phi` advanced by") {
+    // θ near 0: the Legendre map's pivot sin²θ below LEGENDRE_DROP of its start sin²1 puts sin θ below
+    // 0.084 (a soft kick, at the start of the passage); a racing step is closer still.
+    let mut near = 0.05;
+    if warning.message.contains("does not resolve the motion where the chart is singular") {
+        assert!(warning.message.contains("`phi` advanced by"), "{}", warning.message);
+        near = ddirac::LEGENDRE_DROP.sqrt() * 1f64.sin();
+    } else if warning.message.contains("`phi` advanced by") {
         assert!(dphi.abs() > MAX_ANGLE_STEP, "φ advanced {dphi} at step {k}");
     } else {
         assert!(warning.message.contains("sub-steps"), "{}", warning.message);
     }
-    assert!(solution.q[k][0].sin().abs() < 0.05, "θ_k = {}", solution.q[k][0]);
+    assert!(solution.q[k][0].sin().abs() < near, "θ_k = {}", solution.q[k][0]);
     assert!((t - k as f64 * 0.01).abs() < 1e-12);
 }
 

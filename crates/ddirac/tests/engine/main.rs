@@ -59,5 +59,6 @@ mod pendulum_chain;
 mod published_values;
 mod reduction_consistency;
 mod rigid_body;
+mod rigid_principal_axes;
 mod stepper;
 mod undetermined_motion_is_refused;
