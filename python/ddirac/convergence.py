@@ -145,8 +145,8 @@ def _verdict(steps: list[int], orders: list[Optional[float]], declared: int, met
     return p, (steps[first], steps[last]), verdict, message
 
 
-def convergence(system: System, steps: Sequence[int], duration: float, q0: Vector, p0: Optional[Vector] = None,
-                v0: Optional[Vector] = None, **run: Any) -> ConvergenceTable:
+def convergence(system: System, steps: Sequence[int], duration: float, q0: Optional[Vector] = None,
+                p0: Optional[Vector] = None, v0: Optional[Vector] = None, **run: Any) -> ConvergenceTable:
     """Runs ``system`` with each number of steps N in ``steps`` over ``duration`` (h = T/N) and returns
     the table (a :class:`ConvergenceTable`, a dict): ``steps``, ``step``, ``error`` (‖q_N − q(T)‖
     against the exact solution when the system has one, else against a run of the same method with 8
@@ -156,10 +156,15 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Vecto
     the verdict on the order: ``declared_order``, ``observed_order`` (where stable), ``stable_steps``,
     ``verdict`` and ``message``. Other keywords are those of :func:`ddirac.simulate`.
 
+    A :class:`ddirac.RigidBody` takes its initial data as :func:`ddirac.simulate` does (``R0`` with
+    ``Pi0`` or ``Omega0``, and ``q0`` for its shape coordinates, if any); its error is that of the final
+    configuration (R_N, s_N): the Frobenius distance of the attitudes together with the shapes'.
+
     The runs' warnings are emitted once per kind as :class:`ddirac.RunWarning` subclasses, saying at
     which step sizes they occurred (the reference run's included); ``warnings`` in the table maps each
     kind to those step sizes."""
-    from .run import _simulate
+    from .rigid import RigidBody, simulate_rigid
+    from .run import _method_keys, _simulate
 
     counts = sorted({int(n) for n in steps})
     if not counts or counts[0] < 1:
@@ -169,7 +174,23 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Vecto
 
     warned: list[tuple[float, Any]] = []
 
+    rigid = isinstance(system, RigidBody)
+    if rigid:
+        attitude = {key: run.pop(key, None) for key in ("R0", "Pi0", "Omega0")}
+        keys = _method_keys(run.pop("rule", "midpoint"), run.pop("variant", "plus"), run.pop("reduced", False), run)
+        run_rule, run_order = keys["rule"], keys.get("order") or 2
+    elif q0 is None:
+        raise _ddirac.Error("`q0` is missing: the initial configuration, one number per coordinate "
+                            f"({', '.join(system.coordinates)}), or a dict by coordinate")
+
     def final(n: int) -> tuple[np.ndarray, Optional[float]]:
+        if rigid:
+            result = simulate_rigid(system, attitude["R0"], attitude["Pi0"], attitude["Omega0"], q0, p0, v0, None, n,
+                                    duration, n, keys, None)
+            configuration = np.concatenate([np.asarray(result.R[-1]).ravel(), np.asarray(result.q[-1])])
+            if result.summary["warnings"]:
+                warned.append((duration / n, result.summary["warnings"]))
+            return configuration, None
         result = _simulate(system, q0, p0=p0, v0=v0, steps=n, duration=duration, every=n, **run)
         if result.summary["warnings"]:
             warned.append((duration / n, result.summary["warnings"]))
@@ -183,7 +204,8 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Vecto
     else:
         n_ref = REFERENCE_FACTOR * counts[-1]
         q_ref, _ = final(n_ref)
-        angles = np.array([name in system.angles for name in system.coordinates], dtype=bool)
+        angles = np.array(([False] * 9 if rigid else []) + [name in system.angles for name in system.coordinates],
+                          dtype=bool)
         errors = []
         for q, _ in finals:
             d = q - q_ref
@@ -200,7 +222,7 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Vecto
         math.log(errors[i] / errors[i + 1]) / math.log(h[i] / h[i + 1]) if errors[i] > 0 and errors[i + 1] > 0 else None
         for i in range(len(counts) - 1)
     ]
-    rule, order = str(run.get("rule", "midpoint")), run.get("order", 2)
+    rule, order = (str(run_rule), run_order) if rigid else (str(run.get("rule", "midpoint")), run.get("order", 2))
     declared = declared_order(rule, order)
     method = f"rule {rule}" + (f", order {declared}" if declared > 2 else "")
     observed, stable, verdict, message = _verdict(counts, orders, declared, method)
