@@ -174,8 +174,9 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Optio
 
     warned: list[tuple[float, Any]] = []
 
-    rigid = isinstance(system, RigidBody)
-    if rigid:
+    body = system if isinstance(system, RigidBody) else None
+    rigid = body is not None
+    if body is not None:
         attitude = {key: run.pop(key, None) for key in ("R0", "Pi0", "Omega0")}
         keys = _method_keys(run.pop("rule", "midpoint"), run.pop("variant", "plus"), run.pop("reduced", False), run)
         run_rule, run_order = keys["rule"], keys.get("order") or 2
@@ -184,13 +185,14 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Optio
                             f"({', '.join(system.coordinates)}), or a dict by coordinate")
 
     def final(n: int) -> tuple[np.ndarray, Optional[float]]:
-        if rigid:
-            result = simulate_rigid(system, attitude["R0"], attitude["Pi0"], attitude["Omega0"], q0, p0, v0, None, n,
-                                    duration, n, keys, None)
-            configuration = np.concatenate([np.asarray(result.R[-1]).ravel(), np.asarray(result.q[-1])])
-            if result.summary["warnings"]:
-                warned.append((duration / n, result.summary["warnings"]))
+        if body is not None:
+            rigid_run = simulate_rigid(body, attitude["R0"], attitude["Pi0"], attitude["Omega0"], q0, p0, v0, None, n,
+                                       duration, n, keys, None)
+            configuration = np.concatenate([np.asarray(rigid_run.R[-1]).ravel(), np.asarray(rigid_run.q[-1])])
+            if rigid_run.summary["warnings"]:
+                warned.append((duration / n, rigid_run.summary["warnings"]))
             return configuration, None
+        assert q0 is not None  # refused above
         result = _simulate(system, q0, p0=p0, v0=v0, steps=n, duration=duration, every=n, **run)
         if result.summary["warnings"]:
             warned.append((duration / n, result.summary["warnings"]))
