@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence, Union
 import numpy as np
 
 from . import _ddirac
-from .run import Vector
+from .run import Run, Vector
 from .run_warnings import warn_study
 from .system import System
 
@@ -163,7 +163,7 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Optio
     The runs' warnings are emitted once per kind as :class:`ddirac.RunWarning` subclasses, saying at
     which step sizes they occurred (the reference run's included); ``warnings`` in the table maps each
     kind to those step sizes."""
-    from .rigid import RigidBody, simulate_rigid
+    from .rigid import RigidBody, RigidRun, simulate_rigid
     from .run import _method_keys, _simulate
 
     counts = sorted({int(n) for n in steps})
@@ -185,17 +185,17 @@ def convergence(system: System, steps: Sequence[int], duration: float, q0: Optio
                             f"({', '.join(system.coordinates)}), or a dict by coordinate")
 
     def final(n: int) -> tuple[np.ndarray, Optional[float]]:
+        result: Run
         if body is not None:
-            rigid_run = simulate_rigid(body, attitude["R0"], attitude["Pi0"], attitude["Omega0"], q0, p0, v0, None, n,
-                                       duration, n, keys, None)
-            configuration = np.concatenate([np.asarray(rigid_run.R[-1]).ravel(), np.asarray(rigid_run.q[-1])])
-            if rigid_run.summary["warnings"]:
-                warned.append((duration / n, rigid_run.summary["warnings"]))
-            return configuration, None
-        assert q0 is not None  # refused above
-        result = _simulate(system, q0, p0=p0, v0=v0, steps=n, duration=duration, every=n, **run)
+            result = simulate_rigid(body, attitude["R0"], attitude["Pi0"], attitude["Omega0"], q0, p0, v0, None, n,
+                                    duration, n, keys, None)
+        else:
+            assert q0 is not None  # refused above
+            result = _simulate(system, q0, p0=p0, v0=v0, steps=n, duration=duration, every=n, **run)
         if result.summary["warnings"]:
             warned.append((duration / n, result.summary["warnings"]))
+        if isinstance(result, RigidRun):
+            return np.concatenate([np.asarray(result.R[-1]).ravel(), np.asarray(result.q[-1])]), None
         return result.q[-1], result.summary["reference_error"]
 
     finals = [final(n) for n in counts]

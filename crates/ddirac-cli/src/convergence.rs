@@ -147,13 +147,17 @@ fn cleaned(duration: f64) -> f64 {
     format!("{duration:.14e}").parse().unwrap_or(duration)
 }
 
+/// The method in words: `rule midpoint`, with its composition.
+fn method_words(m: &ddirac::Method) -> String {
+    format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition))
+}
+
 /// The study of a spec in coordinates: the final configuration is q_N.
 fn in_coordinates(options: &Options) -> Result<Study<'static>, miette::Report> {
     let loaded = run::load(&options.spec, &options.set)?;
     loaded.print_notes();
     let Loaded { mut plan, .. } = loaded;
-    let m = &plan.method;
-    let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
+    let method = method_words(&plan.method);
     let duration = cleaned(plan.problem.duration());
     Ok(Study {
         name: plan.name.clone(),
@@ -170,8 +174,7 @@ fn in_coordinates(options: &Options) -> Result<Study<'static>, miette::Report> {
 /// together with that of the shapes.
 fn rigid(options: &Options, text: String) -> Result<Study<'static>, miette::Report> {
     let crate::rigid::LoadedRigid { plan, .. } = crate::rigid::load_text(&options.spec, text, &options.set)?;
-    let m = &plan.method;
-    let method = format!("rule {}{}", m.rule.name(), crate::report::composition(m.composition));
+    let method = method_words(&plan.method);
     let duration = cleaned(plan.problem.step * plan.problem.steps as f64);
     let shape = ddirac::rigid::RigidSystem::shape(&plan.body);
     let kinds = std::iter::repeat_n(CoordinateKind::Real, 9).chain(shape.iter().map(|c| c.kind)).collect();

@@ -30,7 +30,7 @@ use nalgebra::{Const, SMatrix, SVector, U1};
 use num_dual::{Dual2SVec64, DualSVec64};
 
 use super::so3::{self, Matrix3};
-use super::step::{orthonormalized, Point};
+use super::step::{orthonormalized, Point, Trivialized};
 use super::system::{PrincipalAxes, RigidSystem};
 use crate::dim::Fixed;
 use crate::newton::{self, KeptJacobian, NewtonFailure, NewtonOptions, NewtonStats};
@@ -186,18 +186,11 @@ impl<'s> PrincipalStep<'s> {
     fn evaluate(&self, x: &Vector3, with_jacobian: bool) -> (Vector3, Option<Jacobian3>, [f64; 3]) {
         let zeta = [x[0], x[1], x[2]];
         let d = self.form.derivatives(self, &zeta, with_jacobian);
-        let g = d.zeta;
-        let bt = so3::transpose(&so3::dcay_inverse(&zeta));
-        let mu = so3::apply(&bt, &g);
+        let t = Trivialized::new(zeta, d.zeta);
+        let mu = t.momentum();
         let r = Vector3::from_fn(|i, _| mu[i] - d.eta[i] - self.from.pi[i]);
         let jacobian = d.second.map(|(hzz, hez)| {
-            let zg = so3::dot(&zeta, &g);
-            let gh = so3::hat(&g);
-            Jacobian3::from_fn(|i, j| {
-                let mut e = (0..3).map(|l| bt[i][l] * hzz[l][j]).sum::<f64>() - hez[i][j];
-                e += -0.5 * gh[i][j] + 0.25 * (zeta[i] * g[j] + if i == j { zg } else { 0.0 });
-                e
-            })
+            Jacobian3::from_fn(|i, j| t.transported(i, |l| hzz[l][j]) - hez[i][j] + t.correction(i, j))
         });
         (r, jacobian, d.eta)
     }

@@ -60,10 +60,8 @@ impl<S: RigidSystem> StepEquations<'_, S> {
         let n = self.f.shape;
         let (a, b) = self.f.blocks(x.as_slice(), &self.from.s);
         let (d, mixed) = first_or_mixed(self.f.dim(), &self.f, &a, &b, with_jacobian);
-        let zeta = [x[0], x[1], x[2]];
-        let g = [d.da[3], d.da[4], d.da[5]];
-        let bt = so3::transpose(&so3::dcay_inverse(&zeta));
-        let mu = so3::apply(&bt, &g);
+        let t = Trivialized::new([x[0], x[1], x[2]], [d.da[3], d.da[4], d.da[5]]);
+        let mu = t.momentum();
         let mut r = DVector::zeros(3 + n);
         for i in 0..3 {
             r[i] = mu[i] - d.da[i] - self.from.pi[i];
@@ -72,15 +70,14 @@ impl<S: RigidSystem> StepEquations<'_, S> {
             r[3 + i] = d.da[6 + i] + self.from.p[i];
         }
         let jacobian = mixed.map(|h| {
-            let zg = so3::dot(&zeta, &g);
-            let gh = so3::hat(&g);
             DMatrix::from_fn(3 + n, 3 + n, |i, j| {
                 if i < 3 {
-                    let mut e = (0..3).map(|l| bt[i][l] * h[(3 + l, j)]).sum::<f64>() - h[(i, j)];
+                    let e = t.transported(i, |l| h[(3 + l, j)]) - h[(i, j)];
                     if j < 3 {
-                        e += -0.5 * gh[i][j] + 0.25 * (zeta[i] * g[j] + if i == j { zg } else { 0.0 });
+                        e + t.correction(i, j)
+                    } else {
+                        e
                     }
-                    e
                 } else {
                     h[(6 + i - 3, j)]
                 }
@@ -122,6 +119,40 @@ impl<S: RigidSystem> StepEquations<'_, S> {
         let r = orthonormalized(&so3::mul(&self.from.r, &f));
         let s = (0..self.f.shape).map(|i| x[3 + i]).collect();
         Ok((Point { r, pi, s, p }, stats))
+    }
+}
+
+/// The left-trivialized momentum μ = (dcay⁻¹_ζ)ᵀ g of the gradient g = ∂L_d/∂ζ, and what the
+/// Jacobian of the residual r_g = μ − ∂L_d/∂η − Π_k in ζ needs of it: (dcay⁻¹_ζ)ᵀ applied to a column
+/// of second derivatives, and the derivative of (dcay⁻¹_ζ)ᵀ g at fixed g, −½ ĝ + ¼ (⟨ζ, g⟩ I + ζ gᵀ).
+pub(crate) struct Trivialized {
+    zeta: [f64; 3],
+    g: [f64; 3],
+    /// (dcay⁻¹_ζ)ᵀ.
+    bt: Matrix3<f64>,
+}
+
+impl Trivialized {
+    pub fn new(zeta: [f64; 3], g: [f64; 3]) -> Self {
+        Self { zeta, g, bt: so3::transpose(&so3::dcay_inverse(&zeta)) }
+    }
+
+    /// μ = (dcay⁻¹_ζ)ᵀ g.
+    pub fn momentum(&self) -> [f64; 3] {
+        so3::apply(&self.bt, &self.g)
+    }
+
+    /// Row i of (dcay⁻¹_ζ)ᵀ times the column l ↦ `column(l)`.
+    pub fn transported(&self, i: usize, column: impl Fn(usize) -> f64) -> f64 {
+        (0..3).map(|l| self.bt[i][l] * column(l)).sum()
+    }
+
+    /// Entry (i, j) of ∂((dcay⁻¹_ζ)ᵀ g)/∂ζ at fixed g.
+    pub fn correction(&self, i: usize, j: usize) -> f64 {
+        let (zeta, g) = (&self.zeta, &self.g);
+        let gh = so3::hat(g);
+        let diagonal = if i == j { so3::dot(zeta, g) } else { 0.0 };
+        -0.5 * gh[i][j] + 0.25 * (zeta[i] * g[j] + diagonal)
     }
 }
 
