@@ -31,21 +31,27 @@ DIAGNOSTICS = (
 class EnsembleResult:
     """The results of an ensemble, arrays with a leading member axis.
 
-    ``final_q``, ``final_p`` (members × n: q_N and p_N, or the state of the failed step),
+    ``final_q``, ``final_p`` (members × n: q_N and p_N, or the state of the failed step; of a rigid body
+    its shape coordinates and momenta, members × 0 for a body without shape), for a rigid body
+    ``final_R`` (members × 3 × 3) and ``final_Pi`` (members × 3) (``attitude`` is True; None otherwise),
     ``status`` (``"ok"`` or ``"failed"`` per member), ``steps`` (steps taken), ``diagnostics`` (a dict
     of arrays, :data:`DIAGNOSTICS`), ``failures`` (a list of dicts ``member``, ``step``, ``t``,
     ``error``), ``members`` (a dict of the varied values by key), ``coordinates``, ``warnings`` (a dict:
     warning kind → the number of members whose run had it), ``derivatives`` (the derivative path → the
     number of members that took it); with trajectories
-    ``t`` (rows), ``q`` and ``p`` (members × rows × n) and ``energy`` (members × rows), NaN after a
-    failed member's last row.
+    ``t`` (rows), ``q`` and ``p`` (members × rows × n) and ``energy`` (members × rows), for a rigid body
+    also ``R`` (members × rows × 3 × 3) and ``Pi`` (members × rows × 3), NaN after a failed member's last
+    row.
     """
 
     coordinates: list[str]
     keys: list[str]
     members: dict[str, np.ndarray]
+    attitude: bool
     final_q: np.ndarray
     final_p: np.ndarray
+    final_R: Optional[np.ndarray]
+    final_Pi: Optional[np.ndarray]
     status: np.ndarray
     steps: np.ndarray
     diagnostics: dict[str, np.ndarray]
@@ -57,6 +63,8 @@ class EnsembleResult:
     q: np.ndarray
     p: np.ndarray
     energy: np.ndarray
+    R: Optional[np.ndarray]
+    Pi: Optional[np.ndarray]
 
     def __init__(self, parts: Sequence[Mapping[str, Any]]) -> None:
         first = parts[0]
@@ -67,8 +75,16 @@ class EnsembleResult:
             return np.concatenate([p[name] for p in parts])
         values = cat("members")
         self.members = {key: values[:, i] for i, key in enumerate(self.keys)}
-        self.final_q = cat("final_q")
-        self.final_p = cat("final_p")
+        self.attitude = bool(first.get("attitude", False))
+        count = sum(len(p["finished"]) for p in parts)
+
+        def state(name: str, rows: tuple[int, ...] = ()) -> np.ndarray:
+            # A body without shape coordinates has no q, p: members × (rows ×) 0.
+            return cat(name) if name in first else np.empty((count, *rows, 0))
+        self.final_q = state("final_q")
+        self.final_p = state("final_p")
+        self.final_R = cat("final_R") if self.attitude else None
+        self.final_Pi = cat("final_Pi") if self.attitude else None
         finished = cat("finished")
         self.status = np.where(finished, "ok", "failed")
         self.steps = cat("steps")
@@ -77,11 +93,16 @@ class EnsembleResult:
         self.derivatives = _sum_counts(p["derivatives"] for p in parts)
         self.warnings = _sum_counts(p["warnings"] for p in parts)
         self.member_seconds = sum(p["member_seconds"] for p in parts)
-        if "q" in first:
+        self.R = self.Pi = None
+        if "energy" in first:
             self.t = first["t"]
-            self.q = cat("q")
-            self.p = cat("p")
+            rows = (len(self.t),)
+            self.q = state("q", rows)
+            self.p = state("p", rows)
             self.energy = cat("energy")
+            if self.attitude:
+                self.R = cat("R")
+                self.Pi = cat("Pi")
 
     def __len__(self) -> int:
         return len(self.status)
@@ -91,9 +112,12 @@ class EnsembleResult:
         return f"ddirac.EnsembleResult(members={len(self)}, failed={failed}, coordinates={self.coordinates})"
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The final table as ``final.csv`` has it: ``member``, ``status``, each coordinate,
-        ``p_<coordinate>``, then the diagnostics."""
+        """The final table as ``final.csv`` has it: ``member``, ``status``, for a rigid body ``R11`` …
+        ``R33`` and ``Pi1`` … ``Pi3``, each coordinate, ``p_<coordinate>``, then the diagnostics."""
         out = {"member": np.arange(len(self)), "status": self.status}
+        if self.final_R is not None and self.final_Pi is not None:
+            out.update({f"R{i + 1}{j + 1}": self.final_R[:, i, j] for i in range(3) for j in range(3)})
+            out.update({f"Pi{i + 1}": self.final_Pi[:, i] for i in range(3)})
         out.update({name: self.final_q[:, i] for i, name in enumerate(self.coordinates)})
         out.update({f"p_{name}": self.final_p[:, i] for i, name in enumerate(self.coordinates)})
         out.update(self.diagnostics)
@@ -162,7 +186,8 @@ def ensemble(spec: SpecLike, members: Union[Mapping[str, Any], pandas.DataFrame,
 
     ``members`` is a dict of equal-length arrays keyed as ``--set`` names the values
     (``initial.q.<coordinate>``, ``initial.p.<coordinate>``, ``initial.v.<coordinate>``,
-    ``parameters.<name>``), or a pandas DataFrame with those columns; without it the spec's
+    ``parameters.<name>``; for a rigid body also ``initial.Pi.<i>`` and ``initial.Omega.<i>``, i = 1, 2,
+    3), or a pandas DataFrame with those columns; without it the spec's
     ``[ensemble]`` table generates them. Member k equals the single run of the spec with its values
     set, bit for bit. A member that fails is recorded (``status``, ``failures``) and the others go on.
 

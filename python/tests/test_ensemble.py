@@ -111,6 +111,18 @@ def test_a_dask_cluster_gives_the_local_result_bit_for_bit(cluster):
         assert np.array_equal(local.diagnostics[name], remote.diagnostics[name], equal_nan=True), name
 
 
+def test_a_rigid_body_s_ensemble_on_a_dask_cluster_gives_the_local_result_bit_for_bit(cluster, tmp_path):
+    spec = tmp_path / "satellite.toml"
+    spec.write_text((EXAMPLES / "satellite_rotors.toml").read_text().replace("duration = 40.0", "duration = 2.0"))
+    members = {"initial.v.a2": np.linspace(0.0, 30.0, 6), "initial.Omega.1": np.linspace(0.01, 0.2, 6)}
+    local = ddirac.ensemble(spec, members=members, trajectories=True)
+    remote = ddirac.ensemble(spec, members=members, client=cluster, trajectories=True, chunks=4)
+    assert local.attitude and remote.attitude and local.coordinates == ["a1", "a2", "a3"]
+    for name in ("final_R", "final_Pi", "final_q", "final_p", "steps", "R", "Pi", "q", "p", "energy"):
+        assert np.array_equal(getattr(local, name), getattr(remote, name), equal_nan=True), name
+    assert local.R.shape == (6, 21, 3, 3) and local.q.shape == (6, 21, 3)
+
+
 def test_a_worker_killed_during_the_run_leaves_the_result_unchanged(cluster):
     # 16 chunks of about 0.1 s each on two one-thread workers; one worker process is killed as soon
     # as it runs a chunk, and Dask runs that chunk again on a live worker.

@@ -218,3 +218,32 @@ def test_a_convergence_study_of_a_rigid_body_against_rk4():
     # A system in coordinates still needs q0; a rigid body's keys on it are refused.
     with pytest.raises(ddirac.Error, match="`q0` is missing"):
         ddirac.convergence(ddirac.System.builtin("kepler"), [10, 20], 1.0)
+
+
+def test_an_ensemble_of_heavy_tops_gives_r_and_pi_arrays_equal_to_single_runs(tmp_path):
+    spec = tmp_path / "top.toml"
+    R0 = tilted(0.3)
+    spec.write_text('system = "rigid_body"\n[parameters]\nI1 = 1.0\nI2 = 1.3\nI3 = 0.4\nm = 1.0\ng = 9.8\n'
+                    'c1 = 0.05\nc3 = 0.5\n[method]\norder = 4\n[time]\nstep = 0.005\nduration = 2.0\n[initial]\n'
+                    f'R = {json.dumps(R0.tolist())}\nPi = [0.3, -0.2, 1.5]\n[output]\nevery = 40\n')
+    members = {"initial.Pi.3": [1.5, 1.2, -0.8], "parameters.c3": [0.5, 0.4, 0.6]}
+    result = ddirac.ensemble(spec, members=members, trajectories=True)
+    assert result.attitude and result.coordinates == []
+    assert result.final_R.shape == (3, 3, 3) and result.final_Pi.shape == (3, 3)
+    assert result.final_q.shape == (3, 0) and result.R.shape == (3, 11, 3, 3) and result.Pi.shape == (3, 11, 3)
+    assert list(result.status) == ["ok"] * 3
+    for k, (pi3, c3) in enumerate(zip(members["initial.Pi.3"], members["parameters.c3"])):
+        body = ddirac.System.builtin("rigid_body", I1=1.0, I2=1.3, I3=0.4, m=1.0, g=9.8, c1=0.05, c3=c3)
+        run = ddirac.simulate(body, R0=R0, Pi0=[0.3, -0.2, pi3], step=0.005, duration=2.0, order=4, every=40)
+        # The member is the single run, bit for bit, rows and all.
+        assert np.array_equal(result.R[k], run.R) and np.array_equal(result.Pi[k], run.Pi)
+        assert np.array_equal(result.final_R[k], run.R[-1]) and np.array_equal(result.final_Pi[k], run.Pi[-1])
+        R, Pi = euler_rk4([1, 1.3, 0.4], [0.05 * 9.8, 0, c3 * 9.8], R0, [0.3, -0.2, pi3], 2.0, 20_000)
+        assert np.abs(result.final_R[k] - R).max() < 1e-6 and np.abs(result.final_Pi[k] - Pi).max() < 1e-6
+    columns = result.columns()
+    assert list(columns)[:4] == ["member", "status", "R11", "R12"] and np.array_equal(columns["Pi3"],
+                                                                                     result.final_Pi[:, 2])
+    with pytest.raises(ddirac.Error, match="the attitude R is a rotation"):
+        ddirac.ensemble(spec, members={"initial.R.1": [1.0]})
+    with pytest.raises(ddirac.Error, match="names no component"):
+        ddirac.ensemble(spec, members={"initial.Pi.0": [1.0]})

@@ -111,13 +111,14 @@ enum Command {
         steps: Vec<u64>,
     },
     /// Run many members of one spec that differ in initial data and/or parameters, in parallel;
-    /// writes final.csv (member, status, final q and p), members.csv, NPY arrays with a leading member
+    /// writes final.csv (member, status, final q and p; a rigid body's R and Π), members.csv, NPY arrays with a leading member
     /// axis (final states, status, diagnostics, and with `[ensemble] trajectories = true` the rows of
     /// every member) and summary.json.
     ///
     /// The members come from `--members FILE.csv` (a header of spec keys as `--set` names them,
     /// `initial.q.<coordinate>`, `initial.p.<coordinate>`, `initial.v.<coordinate>`,
-    /// `parameters.<name>`, then one row of numbers per member) or from the spec's `[ensemble]` table
+    /// `parameters.<name>`, and a rigid body's `initial.Pi.<i>`, `initial.Omega.<i>` (i = 1, 2, 3), then
+    /// one row of numbers per member) or from the spec's `[ensemble]` table
     /// (grids and seeded random draws). Member k gives the same numbers as `ddirac run` with its
     /// values set. A member that fails is recorded (status `failed`, reason in summary.json) and the
     /// others go on. The output directory defaults to out/<spec file stem>-ensemble.

@@ -102,22 +102,7 @@ pub fn read(path: &Path) -> Result<String, CliError> {
 /// ([`initial_entries`]); the others edit the text.
 pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<Loaded, CliError> {
     let original = SpecSource::new(path.display().to_string(), text);
-    let mut entries = vec![];
-    let mut edits = vec![];
-    for arg in set {
-        let entry = arg.split_once('=').and_then(|(key, value)| Some((initial_entries::Entry::parse(key)?, value)));
-        match entry {
-            Some((entry, value)) => {
-                let entry = entry.map_err(|why| CliError::Set { arg: arg.clone(), why })?;
-                let value: f64 = value.trim().parse().map_err(|_| CliError::Set {
-                    arg: arg.clone(),
-                    why: format!("`{}` is not a number", value.trim()),
-                })?;
-                entries.push((arg, entry, value));
-            }
-            None => edits.push(arg.clone()),
-        }
-    }
+    let (entries, edits) = initial_entries::split(set)?;
     let source = if edits.is_empty() {
         original.clone()
     } else {

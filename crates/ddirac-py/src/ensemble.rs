@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
-use ddirac_cli::ensemble::{Ensemble, MembersFrom, Results, DIAGNOSTICS};
+use ddirac_cli::ensemble::{Ensemble, Layout, MemberRows, MembersFrom, Results, DIAGNOSTICS};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -69,12 +69,13 @@ pub fn ensemble<'py>(
     }
     let ensemble = Arc::new(ensemble);
     let count = ensemble.members.len();
-    let (rows, n) = (ensemble.rows(), ensemble.coordinates().len());
-    let kept = Arc::new(Mutex::new(ensemble.trajectories.then(|| Kept::new(count, rows, n))));
+    let rows = ensemble.rows();
+    let layout = ensemble.layout();
+    let kept = Arc::new(Mutex::new(ensemble.trajectories.then(|| Kept::new(count, rows, &layout))));
     let done = Arc::new(AtomicUsize::new(0));
     let (work_ensemble, work_kept, work_done) = (ensemble.clone(), kept.clone(), done.clone());
     let work = move || {
-        let keep = |offset: usize, r: &ddirac::ensemble::Rows| -> Result<(), ddirac::OutputError> {
+        let keep = |offset: usize, r: &MemberRows| -> Result<(), ddirac::OutputError> {
             if let Some(k) = work_kept.lock().expect("no panic while keeping rows").as_mut() {
                 k.put(offset, r);
             }
@@ -95,27 +96,28 @@ pub fn ensemble<'py>(
     arrays(py, &ensemble, results, kept, offset)
 }
 
-/// The rows of every member, kept in memory.
+/// The rows of every member, kept in memory: the parts of the state ([`Layout::parts`]), then the
+/// energy, each members × rows × width.
 struct Kept {
     rows: usize,
-    n: usize,
-    q: Vec<f64>,
-    p: Vec<f64>,
-    energy: Vec<f64>,
+    widths: Vec<usize>,
+    arrays: Vec<Vec<f64>>,
 }
 
 impl Kept {
-    fn new(members: usize, rows: usize, n: usize) -> Self {
-        let nan = |len| vec![f64::NAN; len];
-        Self { rows, n, q: nan(members * rows * n), p: nan(members * rows * n), energy: nan(members * rows) }
+    fn new(members: usize, rows: usize, layout: &Layout) -> Self {
+        let mut widths: Vec<usize> = layout.parts().iter().map(|p| p.width()).collect();
+        widths.push(1);
+        let arrays = widths.iter().map(|w| vec![f64::NAN; members * rows * w]).collect();
+        Self { rows, widths, arrays }
     }
 
-    fn put(&mut self, offset: usize, r: &ddirac::ensemble::Rows) {
-        let (rows, n) = (self.rows, self.n);
-        let block = offset * rows * n;
-        self.q[block..block + r.q.len()].copy_from_slice(&r.q);
-        self.p[block..block + r.p.len()].copy_from_slice(&r.p);
-        self.energy[offset * rows..offset * rows + r.energy.len()].copy_from_slice(&r.energy);
+    fn put(&mut self, offset: usize, r: &MemberRows) {
+        let values = r.state.iter().chain(std::iter::once(&r.energy));
+        for ((array, width), values) in self.arrays.iter_mut().zip(&self.widths).zip(values) {
+            let block = offset * self.rows * width;
+            array[block..block + values.len()].copy_from_slice(values);
+        }
     }
 }
 
@@ -127,15 +129,23 @@ fn arrays<'py>(
     kept: Option<Kept>,
     offset: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (m, n) = (results.len(), results.n);
+    let m = results.len();
+    let layout = ensemble.layout();
     let d = PyDict::new(py);
     d.set_item("offset", offset)?;
     d.set_item("coordinates", ensemble.coordinates())?;
+    d.set_item("attitude", layout.attitude)?;
     let keys: Vec<String> = ensemble.members.keys.iter().map(|k| k.name()).collect();
     d.set_item("members", PyArray1::from_vec(py, ensemble.members.values.clone()).reshape([m, keys.len()])?)?;
     d.set_item("keys", keys)?;
-    d.set_item("final_q", PyArray1::from_vec(py, results.final_q).reshape([m, n])?)?;
-    d.set_item("final_p", PyArray1::from_vec(py, results.final_p).reshape([m, n])?)?;
+    let mut at = 0;
+    for part in layout.parts() {
+        let width = part.width();
+        let values: Vec<f64> = (0..m).flat_map(|k| results.part(k, at..at + width).to_vec()).collect();
+        let shape: Vec<usize> = std::iter::once(m).chain(part.shape.iter().copied()).collect();
+        d.set_item(format!("final_{}", part.name), PyArray1::from_vec(py, values).reshape(shape)?)?;
+        at += width;
+    }
     d.set_item("finished", PyArray1::from_vec(py, results.finished))?;
     d.set_item("steps", PyArray1::from_vec(py, results.steps))?;
     let diagnostics = PyDict::new(py);
@@ -159,9 +169,13 @@ fn arrays<'py>(
     d.set_item("steppers", (results.preparations.prepared, results.preparations.renewed))?;
     if let Some(k) = kept {
         d.set_item("t", PyArray1::from_vec(py, ensemble.times()))?;
-        d.set_item("q", PyArray1::from_vec(py, k.q).reshape([m, k.rows, n])?)?;
-        d.set_item("p", PyArray1::from_vec(py, k.p).reshape([m, k.rows, n])?)?;
-        d.set_item("energy", PyArray1::from_vec(py, k.energy).reshape([m, k.rows])?)?;
+        let mut names: Vec<(String, Vec<usize>)> =
+            layout.parts().into_iter().map(|p| (p.name.to_owned(), p.shape)).collect();
+        names.push(("energy".into(), vec![]));
+        for ((name, shape), values) in names.into_iter().zip(k.arrays) {
+            let shape: Vec<usize> = [m, k.rows].into_iter().chain(shape).collect();
+            d.set_item(name, PyArray1::from_vec(py, values).reshape(shape)?)?;
+        }
     }
     Ok(d)
 }

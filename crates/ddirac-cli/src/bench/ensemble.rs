@@ -16,7 +16,7 @@
 
 use std::path::{Path, PathBuf};
 
-use ddirac::ensemble::{MemberSystem, Rows};
+use ddirac::ensemble::MemberSystem;
 use ddirac::systems::DoubleSphericalPendulum;
 use ddirac::{Differentiation, OutputError, Problem, Rule, Variant};
 use serde::Serialize;
@@ -24,7 +24,7 @@ use serde_json::Value;
 
 use super::harness::{compare, Comparison, Contender, Pair, Target};
 use super::{method, print, to_json, Settings, LAST_ROW_ONLY};
-use crate::ensemble::{Ensemble, MembersFrom};
+use crate::ensemble::{Ensemble, MemberRows, MembersFrom};
 
 #[derive(Serialize)]
 struct Report {
@@ -125,7 +125,7 @@ fn setup(settings: &Settings) -> Result<Comparison, miette::Report> {
     let ensemble = Ensemble::load(&spec, &set, MembersFrom::Columns(columns))
         .map_err(|e| miette::Report::new(e).wrap_err("the set-up benchmark's spec"))?;
     let ensemble_run = || {
-        let none = |_: usize, _: &Rows| -> Result<(), OutputError> { Ok(()) };
+        let none = |_: usize, _: &MemberRows| -> Result<(), OutputError> { Ok(()) };
         let results = ensemble
             .run(0..count, Some(1), &none, &|_| {})
             .map_err(|e| miette::Report::new(e).wrap_err("the set-up benchmark's ensemble"))?;

@@ -10,6 +10,13 @@
 //! with trajectories:   DIR/npy/t.npy (rows), q.npy and p.npy (members × rows × n), energy.npy (members × rows)
 //! ```
 //!
+//! A rigid body's state is its attitude and body angular momentum, then its shape (if any): final.csv
+//! has the columns `R11` … `R33`, `Pi1` … `Pi3` before the shape's, the arrays are `final_R.npy`
+//! (members × 3 × 3), `final_Pi.npy` (members × 3) and with trajectories `R.npy` (members × rows × 3 × 3)
+//! and `Pi.npy` (members × rows × 3); `final_q`, `final_p`, `q` and `p` hold the shape coordinates
+//! and momenta and are written only when the body has shape coordinates; summary.json says
+//! `"attitude": "SO(3)"`.
+//!
 //! Trajectories are written while the members run, each member's block at its place in the
 //! preallocated arrays (so memory holds one member's rows per thread); a failed member's rows
 //! after its failure are NaN. Everything goes through the run's staging directory and is committed
@@ -24,15 +31,14 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 
-use ddirac::ensemble::Rows;
 use serde::{Deserialize, Serialize};
 
-use super::{Ensemble, Failure, MembersFrom, Results, DIAGNOSTICS};
+use super::{Ensemble, Failure, Layout, MemberRows, MembersFrom, Results, DIAGNOSTICS};
 use crate::diagnostics::CliError;
 use crate::output::{self, FileError};
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
-use crate::{lock, npy, run};
+use crate::{lock, npy};
 
 /// Options of `ddirac ensemble`.
 pub struct Options {
@@ -85,8 +91,11 @@ pub struct SummaryJson {
     pub fingerprint: String,
     /// The system's name.
     pub system: String,
-    /// The coordinates.
+    /// The coordinates (of a rigid body: its shape coordinates).
     pub coordinates: Vec<String>,
+    /// `SO(3)` for a rigid body, whose state holds its attitude R and angular momentum Π.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attitude: Option<String>,
     /// The varied keys.
     pub keys: Vec<String>,
     /// Members of the whole ensemble.
@@ -157,7 +166,7 @@ pub fn command(options: &Options) -> Result<(), CliError> {
     let trajectories =
         ensemble.trajectories.then(|| Trajectories::create(&staging, &ensemble, range.len())).transpose()?;
     let progress = Mutex::new(Progress::new(range.len() as u64, options.quiet));
-    let keep = |offset: usize, rows: &Rows| -> Result<(), ddirac::OutputError> {
+    let keep = |offset: usize, rows: &MemberRows| -> Result<(), ddirac::OutputError> {
         match &trajectories {
             Some(t) => t.write(offset, rows).map_err(|e| Box::new(e) as ddirac::OutputError),
             None => Ok(()),
@@ -179,16 +188,17 @@ pub fn command(options: &Options) -> Result<(), CliError> {
         ddirac_version: env!("CARGO_PKG_VERSION").into(),
         spec: options.spec.display().to_string(),
         fingerprint: ensemble.fingerprint(),
-        system: ensemble.base.plan.name.clone(),
+        system: ensemble.base.name(),
         coordinates: ensemble.coordinates(),
+        attitude: ensemble.layout().attitude.then(|| "SO(3)".to_owned()),
         keys: ensemble.members.keys.iter().map(super::Key::name).collect(),
         members: total,
         shard,
         finished: results.finished.iter().filter(|f| **f).count(),
         failed: results.failures.len(),
         failures: results.failures.clone(),
-        steps: ensemble.base.plan.problem.steps,
-        step: ensemble.base.plan.problem.step,
+        steps: ensemble.base.grid().1,
+        step: ensemble.base.grid().0,
         rows: if ensemble.trajectories { ensemble.rows() } else { 0 },
         derivatives: results.derivatives.clone(),
         warnings: results.warnings.clone(),
@@ -212,7 +222,7 @@ fn default_dir(out: Option<&Path>, ensemble: &Ensemble) -> PathBuf {
     if let Some(out) = out {
         return out.to_owned();
     }
-    let single = run::output_dir(None, &ensemble.base.plan, &ensemble.path);
+    let single = ensemble.base.output_dir(&ensemble.path);
     let mut name = single.file_name().map_or("run".into(), |n| n.to_os_string());
     name.push("-ensemble");
     single.with_file_name(name)
@@ -259,24 +269,15 @@ fn human(summary: &SummaryJson, dir: &Path) -> String {
 
 /// Writes `final.csv`, `members.csv` and the per-member arrays; returns their names.
 fn write_results(dir: &Path, ensemble: &Ensemble, results: &Results) -> Result<Vec<PathBuf>, FileError> {
-    let names = ensemble.coordinates();
-    let n = names.len();
+    let layout = ensemble.layout();
     let mut files = vec![];
     // final.csv
-    let mut text = String::from("member,status");
-    for name in &names {
-        text.push(',');
-        text.push_str(name);
-    }
-    for name in &names {
-        text.push_str(",p_");
-        text.push_str(name);
-    }
+    let mut text = final_header(&layout);
     text.push('\n');
     for m in 0..results.len() {
         text.push_str(&(results.first + m).to_string());
         text.push_str(if results.finished[m] { ",ok" } else { ",failed" });
-        for v in results.final_q[m * n..(m + 1) * n].iter().chain(&results.final_p[m * n..(m + 1) * n]) {
+        for v in results.part(m, 0..results.width) {
             text.push(',');
             output::write_number(&mut text, *v);
         }
@@ -301,12 +302,22 @@ fn write_results(dir: &Path, ensemble: &Ensemble, results: &Results) -> Result<V
     files.push(write_text(dir, "members.csv", &text)?);
     // Arrays with a member axis.
     let count = results.len() as u64;
-    let mut arrays: Vec<(String, &str, Vec<u64>, Vec<u8>)> = vec![
-        ("final_q".into(), "<f8", vec![count, n as u64], npy::f64_bytes(&results.final_q)),
-        ("final_p".into(), "<f8", vec![count, n as u64], npy::f64_bytes(&results.final_p)),
-        ("status".into(), "|u1", vec![count], results.finished.iter().map(|f| u8::from(!f)).collect()),
-        ("steps".into(), "<i8", vec![count], results.steps.iter().flat_map(|s| (*s as i64).to_le_bytes()).collect()),
-    ];
+    let mut arrays: Vec<(String, &str, Vec<u64>, Vec<u8>)> = vec![];
+    let mut at = 0;
+    for part in layout.parts() {
+        let width = part.width();
+        let values: Vec<f64> = (0..results.len()).flat_map(|m| results.part(m, at..at + width).to_vec()).collect();
+        let shape = std::iter::once(count).chain(part.shape.iter().map(|&d| d as u64)).collect();
+        arrays.push((format!("final_{}", part.name), "<f8", shape, npy::f64_bytes(&values)));
+        at += width;
+    }
+    arrays.push(("status".into(), "|u1", vec![count], results.finished.iter().map(|f| u8::from(!f)).collect()));
+    arrays.push((
+        "steps".into(),
+        "<i8",
+        vec![count],
+        results.steps.iter().flat_map(|s| (*s as i64).to_le_bytes()).collect(),
+    ));
     for ((name, _), column) in DIAGNOSTICS.iter().zip(&results.diagnostics) {
         arrays.push(((*name).into(), "<f8", vec![count], npy::f64_bytes(column)));
     }
@@ -317,6 +328,15 @@ fn write_results(dir: &Path, ensemble: &Ensemble, results: &Results) -> Result<V
         files.push(relative);
     }
     Ok(files)
+}
+
+/// The header of `final.csv`.
+fn final_header(layout: &Layout) -> String {
+    std::iter::once("member".to_owned())
+        .chain(std::iter::once("status".to_owned()))
+        .chain(layout.columns())
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 fn write_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, FileError> {
@@ -331,44 +351,52 @@ fn write_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, FileError> 
 struct Trajectories {
     dir: PathBuf,
     rows: usize,
-    n: usize,
-    /// q, p, energy: file, header length.
-    files: [Mutex<(File, u64)>; 3],
+    /// Per array (the parts of the state, then the energy): its name, the width of one row, its file
+    /// and header length.
+    files: Vec<TrajectoryFile>,
 }
 
-const TRAJECTORY_FILES: [&str; 3] = ["q", "p", "energy"];
+/// A trajectory array being written: its name, the width of one row, its file and header length.
+type TrajectoryFile = (String, usize, Mutex<(File, u64)>);
+
+/// The trajectory arrays of a layout: name and the shape of one row's value (the energy's is `[]`).
+fn trajectory_parts(layout: &Layout) -> Vec<(String, Vec<u64>)> {
+    let mut parts: Vec<(String, Vec<u64>)> =
+        layout.parts().into_iter().map(|p| (p.name.to_owned(), p.shape.iter().map(|&d| d as u64).collect())).collect();
+    parts.push(("energy".into(), vec![]));
+    parts
+}
 
 impl Trajectories {
     fn create(dir: &Path, ensemble: &Ensemble, members: usize) -> Result<Self, FileError> {
-        let (rows, n) = (ensemble.rows(), ensemble.coordinates().len());
+        let rows = ensemble.rows();
         let t = ensemble.times();
         let path = dir.join("npy/t.npy");
         output::at(&path, npy::write(&path, "<f8", &[t.len() as u64], &npy::f64_bytes(&t)))?;
         let (m, r) = (members as u64, rows as u64);
-        let shapes = [vec![m, r, n as u64], vec![m, r, n as u64], vec![m, r]];
-        let open = |name: &str, shape: &[u64]| -> Result<Mutex<(File, u64)>, FileError> {
+        let mut files = vec![];
+        for (name, row_shape) in trajectory_parts(&ensemble.layout()) {
+            let shape: Vec<u64> = [m, r].into_iter().chain(row_shape.iter().copied()).collect();
             let path = dir.join(format!("npy/{name}.npy"));
-            let header = npy::header_nd("<f8", shape);
+            let header = npy::header_nd("<f8", &shape);
             let mut file = output::at(&path, File::create(&path))?;
             output::at(&path, file.write_all(&header))?;
             let len = header.len() as u64 + shape.iter().product::<u64>() * 8;
             output::at(&path, file.set_len(len))?;
-            Ok(Mutex::new((file, header.len() as u64)))
-        };
-        let files = [open("q", &shapes[0])?, open("p", &shapes[1])?, open("energy", &shapes[2])?];
-        Ok(Self { dir: dir.to_owned(), rows, n, files })
+            let width = row_shape.iter().product::<u64>() as usize;
+            files.push((name, width, Mutex::new((file, header.len() as u64))));
+        }
+        Ok(Self { dir: dir.to_owned(), rows, files })
     }
 
     /// Writes member `offset`'s rows into its block, NaN after its last row.
-    fn write(&self, offset: usize, rows: &Rows) -> Result<(), FileError> {
-        let (r, n) = (self.rows, self.n);
-        let padded = |values: &[f64], width: usize| {
-            let mut block = values.to_vec();
+    fn write(&self, offset: usize, rows: &MemberRows) -> Result<(), FileError> {
+        let r = self.rows;
+        let values = rows.state.iter().chain(std::iter::once(&rows.energy));
+        for ((name, width, file), values) in self.files.iter().zip(values) {
+            let mut block = values.clone();
             block.resize(r * width, f64::NAN);
-            npy::f64_bytes(&block)
-        };
-        let blocks = [(padded(&rows.q, n), n), (padded(&rows.p, n), n), (padded(&rows.energy, 1), 1)];
-        for ((file, name), (bytes, width)) in self.files.iter().zip(TRAJECTORY_FILES).zip(blocks) {
+            let bytes = npy::f64_bytes(&block);
             let path = self.dir.join(format!("npy/{name}.npy"));
             let mut guard = file.lock().expect("no panic while writing");
             let at = guard.1 + (offset * r * width * 8) as u64;
@@ -379,7 +407,7 @@ impl Trajectories {
 
     fn finish(self) -> Result<Vec<PathBuf>, FileError> {
         let mut files = vec![PathBuf::from("npy/t.npy")];
-        for (file, name) in self.files.into_iter().zip(TRAJECTORY_FILES) {
+        for (name, _, file) in self.files {
             let relative = PathBuf::from(format!("npy/{name}.npy"));
             let path = self.dir.join(&relative);
             let (file, _) = file.into_inner().expect("no panic while writing");
@@ -390,26 +418,38 @@ impl Trajectories {
     }
 }
 
-/// The arrays of an ensemble directory of `members` members with `n` coordinates and `rows` rows per
-/// member (0 without trajectories): file name, element type and shape, as [`write_results`] and
-/// [`Trajectories`] write them.
-fn arrays(members: usize, n: usize, rows: usize) -> Vec<(String, &'static str, Vec<u64>)> {
-    let (m, n, r) = (members as u64, n as u64, rows as u64);
-    let mut arrays: Vec<(String, &'static str, Vec<u64>)> = vec![
-        ("final_q.npy".into(), "<f8", vec![m, n]),
-        ("final_p.npy".into(), "<f8", vec![m, n]),
-        ("status.npy".into(), "|u1", vec![m]),
-        ("steps.npy".into(), "<i8", vec![m]),
-    ];
+/// The arrays of an ensemble directory of `members` members whose state is laid out as `layout`, with
+/// `rows` rows per member (0 without trajectories): file name, element type and shape, as
+/// [`write_results`] and [`Trajectories`] write them.
+fn arrays(members: usize, layout: &Layout, rows: usize) -> Vec<(String, &'static str, Vec<u64>)> {
+    let (m, r) = (members as u64, rows as u64);
+    let mut arrays: Vec<(String, &'static str, Vec<u64>)> = layout
+        .parts()
+        .into_iter()
+        .map(|p| {
+            (
+                format!("final_{}.npy", p.name),
+                "<f8",
+                std::iter::once(m).chain(p.shape.iter().map(|&d| d as u64)).collect(),
+            )
+        })
+        .collect();
+    arrays.push(("status.npy".into(), "|u1", vec![m]));
+    arrays.push(("steps.npy".into(), "<i8", vec![m]));
     arrays.extend(DIAGNOSTICS.iter().map(|(name, _)| (format!("{name}.npy"), "<f8", vec![m])));
     if rows > 0 {
         arrays.push(("t.npy".into(), "<f8", vec![r]));
-        arrays.push(("q.npy".into(), "<f8", vec![m, r, n]));
-        arrays.push(("p.npy".into(), "<f8", vec![m, r, n]));
-        arrays.push(("energy.npy".into(), "<f8", vec![m, r]));
+        for (name, shape) in trajectory_parts(layout) {
+            arrays.push((format!("{name}.npy"), "<f8", [m, r].into_iter().chain(shape).collect()));
+        }
     }
     arrays.sort();
     arrays
+}
+
+/// The layout of the ensemble a summary describes.
+fn layout_of(s: &SummaryJson) -> Layout {
+    Layout { coordinates: s.coordinates.clone(), attitude: s.attitude.is_some() }
 }
 
 /// A refusal of `ddirac merge`.
@@ -439,7 +479,7 @@ fn check_summary(dir: &Path, s: &SummaryJson, reference_dir: &Path, reference: &
     let differs: Vec<&str> = [
         ("the fingerprint of spec, --set and members", s.fingerprint != reference.fingerprint),
         ("the number of members", s.members != reference.members),
-        ("the coordinates", s.coordinates != reference.coordinates),
+        ("the coordinates", s.coordinates != reference.coordinates || s.attitude != reference.attitude),
         ("the varied keys", s.keys != reference.keys),
         ("the steps", s.steps != reference.steps || s.step.to_bits() != reference.step.to_bits()),
         ("the rows per member", s.rows != reference.rows),
@@ -551,13 +591,8 @@ fn check_table(dir: &Path, name: &str, header: &str, shard: ShardJson) -> Result
 fn check_files(dir: &Path, s: &SummaryJson) -> Result<(), CliError> {
     let shard = s.shard.expect("checked by check_summary");
     let coordinates = &s.coordinates;
-    let mut header = String::from("member,status");
-    for c in coordinates {
-        header.push_str(&format!(",{c}"));
-    }
-    for c in coordinates {
-        header.push_str(&format!(",p_{c}"));
-    }
+    let layout = layout_of(s);
+    let header = final_header(&layout);
     let (_, ok) = check_table(dir, "final.csv", &header, shard)?;
     if ok != s.finished {
         return Err(refuse(format!(
@@ -572,7 +607,7 @@ fn check_files(dir: &Path, s: &SummaryJson) -> Result<(), CliError> {
     check_table(dir, "members.csv", &header, shard)?;
 
     let npy_dir = dir.join("npy");
-    let expected = arrays(shard.end - shard.first, coordinates.len(), s.rows);
+    let expected = arrays(shard.end - shard.first, &layout, s.rows);
     let mut present: Vec<String> = std::fs::read_dir(&npy_dir)
         .map_err(|source| CliError::Read { what: "the shard directory", path: npy_dir.clone(), source })?
         .filter_map(|e| e.ok()?.file_name().into_string().ok())
@@ -698,7 +733,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, quiet: bool) -> Result<(), CliError> 
         }
         files.push(write_text(&staging, name, &text)?);
     }
-    for (name, _, _) in arrays(first.members, first.coordinates.len(), first.rows) {
+    for (name, _, _) in arrays(first.members, &layout_of(&first), first.rows) {
         let arrays: Vec<npy::Array> = parts
             .iter()
             .map(|(dir, _)| {

@@ -3,7 +3,8 @@
 //!
 //! Members differ in initial data and parameters only: a column is `initial.q.<coordinate>`,
 //! `initial.p.<coordinate>`, `initial.v.<coordinate>` or `parameters.<name>`, as `--set` names the
-//! value. Every value is a finite number.
+//! value (for a rigid body also `initial.Pi.<i>` and `initial.Omega.<i>`, i = 1, 2, 3, and its shape
+//! coordinates' entries). Every value is a finite number.
 
 use std::path::Path;
 
@@ -12,7 +13,20 @@ use toml::Spanned;
 use super::random::Random;
 use crate::diagnostics::{CliError, SpecSource};
 use crate::initial_entries::Entry;
-use crate::spec::{EnsembleSpec, Plan};
+use crate::spec::EnsembleSpec;
+
+/// What the members of an ensemble of a spec may vary, and what the spec starts from.
+#[derive(Debug, Clone)]
+pub struct Variables {
+    /// The coordinates (of a rigid body: its shape coordinates).
+    pub coordinates: Vec<String>,
+    /// The system's parameters.
+    pub parameters: Vec<String>,
+    /// Whether the system is a rigid body, whose `Pi` and `Omega` may vary.
+    pub rigid: bool,
+    /// Whether the spec starts from momenta (`p`, `Pi`) rather than velocities (`v`, `Omega`).
+    pub momenta: bool,
+}
 
 /// One varied key.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,34 +46,61 @@ impl Key {
         }
     }
 
-    /// Reads `key`, checking the coordinate or parameter it names against `plan`.
-    pub fn parse(key: &str, plan: &Plan) -> Result<Self, String> {
+    /// Reads `key`, checking the coordinate or parameter it names against `variables`.
+    pub fn parse(key: &str, variables: &Variables) -> Result<Self, String> {
         if let Some(entry) = Entry::parse(key) {
             let entry = entry?;
-            let names: Vec<String> = plan.system.coordinates().into_iter().map(|c| c.name).collect();
+            if entry.vector.of_attitude() {
+                if !variables.rigid {
+                    crate::initial_entries::refuse_attitude(std::slice::from_ref(&entry))?;
+                }
+                return Ok(Self::Entry(entry));
+            }
+            let names = &variables.coordinates;
             if !names.contains(&entry.coordinate) {
-                return Err(format!(
-                    "`{}` is not a coordinate; the coordinates are {}",
-                    entry.coordinate,
-                    names.join(", ")
-                ));
+                return Err(match (variables.rigid, names.is_empty()) {
+                    (true, true) => format!(
+                        "`{key}` names a shape coordinate, and this body has none: vary `initial.Pi.<i>` or \
+                         `initial.Omega.<i>` (i = 1, 2, 3)"
+                    ),
+                    (true, false) => format!(
+                        "`{}` is not a shape coordinate; the shape coordinates are {}",
+                        entry.coordinate,
+                        names.join(", ")
+                    ),
+                    (false, _) => {
+                        format!("`{}` is not a coordinate; the coordinates are {}", entry.coordinate, names.join(", "))
+                    }
+                });
             }
             return Ok(Self::Entry(entry));
         }
         if let Some(name) = key.strip_prefix("parameters.") {
-            if !plan.parameters.iter().any(|(n, _)| n == name) {
-                let names: Vec<&str> = plan.parameters.iter().map(|(n, _)| n.as_str()).collect();
+            if !variables.parameters.iter().any(|n| n == name) {
                 return Err(format!(
                     "`{name}` is not a parameter of the system; its parameters are {}",
-                    names.join(", ")
+                    variables.parameters.join(", ")
                 ));
             }
             return Ok(Self::Parameter(name.to_owned()));
         }
+        if variables.rigid && key.trim().starts_with("initial.R") {
+            return Err(format!(
+                "`{key}` cannot vary across members: the attitude R is a rotation, not nine free numbers. Vary the \
+                 body's `initial.Pi.<i>` or `initial.Omega.<i>` (i = 1, 2, 3) and its parameters, or run one ensemble \
+                 per attitude (`--set initial.R=[[..], [..], [..]]`)"
+            ));
+        }
+        let initial = if variables.rigid {
+            "`initial.Pi.<i>`, `initial.Omega.<i>`, and the shape's `initial.q.<coordinate>`, `initial.p.<coordinate>`, \
+             `initial.v.<coordinate>`"
+        } else {
+            "`initial.q.<coordinate>`, `initial.p.<coordinate>`, `initial.v.<coordinate>`"
+        };
         Err(format!(
             "`{key}` cannot vary across members: the members of an ensemble share the system, the method, the time \
-             grid and the output; they differ in initial data (`initial.q.<coordinate>`, `initial.p.<coordinate>`, \
-             `initial.v.<coordinate>`) and parameters (`parameters.<name>`). Run one ensemble per value of `{key}`"
+             grid and the output; they differ in initial data ({initial}) and parameters (`parameters.<name>`). Run \
+             one ensemble per value of `{key}`"
         ))
     }
 }
@@ -100,14 +141,14 @@ impl Members {
 
     /// Members from columns of values keyed as `--set` names them (`what` names their origin in
     /// errors).
-    pub fn from_columns(columns: &[(String, Vec<f64>)], plan: &Plan, what: &str) -> Result<Self, CliError> {
+    pub fn from_columns(columns: &[(String, Vec<f64>)], variables: &Variables, what: &str) -> Result<Self, CliError> {
         let invalid = |why: String| CliError::Members { what: what.to_owned(), why };
         if columns.is_empty() {
             return Err(invalid("there are no columns: name at least one spec key to vary".into()));
         }
         let mut keys = vec![];
         for (name, _) in columns {
-            let key = Key::parse(name.trim(), plan).map_err(|why| invalid(format!("column `{name}`: {why}")))?;
+            let key = Key::parse(name.trim(), variables).map_err(|why| invalid(format!("column `{name}`: {why}")))?;
             if keys.contains(&key) {
                 return Err(invalid(format!("the column `{name}` is given twice")));
             }
@@ -132,12 +173,12 @@ impl Members {
             }
         }
         let members = Self { keys, values };
-        members.check_momenta(plan).map_err(invalid)?;
+        members.check_momenta(variables).map_err(invalid)?;
         Ok(members)
     }
 
     /// Reads a members file: a header of spec keys, then one row of numbers per member.
-    pub fn read_csv(path: &Path, plan: &Plan) -> Result<Self, CliError> {
+    pub fn read_csv(path: &Path, variables: &Variables) -> Result<Self, CliError> {
         let what = format!("the members file `{}`", path.display());
         let invalid = |why: String| CliError::Members { what: what.clone(), why };
         let mut reader =
@@ -175,14 +216,18 @@ impl Members {
         if columns.first().is_some_and(|(_, c)| c.is_empty()) {
             return Err(invalid("it has a header but no members".into()));
         }
-        Self::from_columns(&columns, plan, &what)
+        Self::from_columns(&columns, variables, &what)
     }
 
     /// Members from the spec's `[ensemble]` table.
-    pub fn generate(source: &SpecSource, table: &Spanned<EnsembleSpec>, plan: &Plan) -> Result<Self, CliError> {
+    pub fn generate(
+        source: &SpecSource,
+        table: &Spanned<EnsembleSpec>,
+        variables: &Variables,
+    ) -> Result<Self, CliError> {
         let spec = table.get_ref();
         let key = |key: &Spanned<String>| {
-            Key::parse(key.get_ref(), plan).map_err(|why| source.error(Some(key.span()), why, "this key"))
+            Key::parse(key.get_ref(), variables).map_err(|why| source.error(Some(key.span()), why, "this key"))
         };
         let mut axes: Vec<(Key, Vec<f64>)> = vec![];
         for axis in &spec.grid {
@@ -290,15 +335,20 @@ impl Members {
             }
         }
         let members = Self { keys, values };
-        members.check_momenta(plan).map_err(|why| source.error(Some(table.span()), why, ""))?;
+        members.check_momenta(variables).map_err(|why| source.error(Some(table.span()), why, ""))?;
         Ok(members)
     }
 
     /// Refuses momenta and velocities mixed with the spec's other one unless complete.
-    fn check_momenta(&self, plan: &Plan) -> Result<(), String> {
+    fn check_momenta(&self, variables: &Variables) -> Result<(), String> {
         let entries: Vec<Entry> =
             self.keys.iter().filter_map(|k| if let Key::Entry(e) = k { Some(e.clone()) } else { None }).collect();
-        crate::initial_entries::check_kinds(&entries, &plan.problem, plan.system.coordinates().len())
+        let n = variables.coordinates.len();
+        if variables.rigid {
+            crate::initial_entries::check_rigid_kinds(&entries, variables.momenta, n)
+        } else {
+            crate::initial_entries::check_families(&entries, variables.momenta, n, false)
+        }
     }
 }
 

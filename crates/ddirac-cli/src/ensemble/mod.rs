@@ -8,11 +8,14 @@
 //! that run's bit for bit. Members that differ only in initial data share the spec's system (one
 //! parse of its Lagrangian) and its compiled programs; members with their own parameters are each
 //! validated as a spec of their own (a text system's parameters are runtime inputs of its compiled
-//! programs, so they compile once too).
+//! programs, so they compile once too). A rigid body's members are run by [`rigid`], and their state
+//! is R, Π (and q, p of a shape) where a system in coordinates has q, p ([`Layout`]).
 
 pub mod files;
+pub mod layout;
 pub mod members;
 mod random;
+mod rigid;
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -20,14 +23,19 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use ddirac::ensemble::{MemberSystem, Rows, Status};
+use ddirac::ensemble::{MemberSystem, Status};
+use ddirac::rigid::RigidProblem;
 use ddirac::{Error, Input, Problem};
+use rayon::prelude::*;
 
 use crate::diagnostics::CliError;
 use crate::initial_entries::{self, Entry};
+use crate::rigid::plan::RigidModel;
+use crate::rigid::LoadedRigid;
 use crate::run::{self, Loaded};
 use crate::signals;
-pub use members::{Key, Members};
+pub use layout::Layout;
+pub use members::{Key, Members, Variables};
 
 /// Where the members of an ensemble come from.
 pub enum MembersFrom {
@@ -39,6 +47,153 @@ pub enum MembersFrom {
     Spec,
 }
 
+/// The spec of an ensemble with `--set` applied, validated: a system in coordinates or a rigid body.
+pub enum Base {
+    /// A system in coordinates.
+    Coordinates(Box<Loaded>),
+    /// A rigid body.
+    Rigid(Box<LoadedRigid>),
+}
+
+impl Base {
+    /// Reads the spec text `text` of the file `path` with `set` applied, as `ddirac run` would.
+    fn load(path: &Path, text: String, set: &[String]) -> Result<Self, CliError> {
+        Ok(if crate::rigid::names_rigid_body(&text, set) {
+            Self::Rigid(Box::new(crate::rigid::load_text(path, text, set)?))
+        } else {
+            Self::Coordinates(Box::new(run::load_text(path, text, set)?))
+        })
+    }
+
+    /// Prints what the overrides did that the user may not expect (see [`Loaded::print_notes`]).
+    pub fn print_notes(&self) {
+        if let Self::Coordinates(loaded) = self {
+            loaded.print_notes();
+        }
+    }
+
+    /// The system's name.
+    pub fn name(&self) -> String {
+        match self {
+            Self::Coordinates(l) => l.plan.name.clone(),
+            Self::Rigid(l) => l.plan.name.clone(),
+        }
+    }
+
+    /// The step h and the number of steps N.
+    pub fn grid(&self) -> (f64, usize) {
+        match self {
+            Self::Coordinates(l) => (l.plan.problem.step, l.plan.problem.steps),
+            Self::Rigid(l) => (l.plan.problem.step, l.plan.problem.steps),
+        }
+    }
+
+    /// Every how many steps a row is reported.
+    pub fn every(&self) -> usize {
+        match self {
+            Self::Coordinates(l) => l.plan.output.every.max(1),
+            Self::Rigid(l) => l.plan.every.max(1),
+        }
+    }
+
+    /// The directory a single run of the spec at `spec` writes to.
+    pub fn output_dir(&self, spec: &Path) -> PathBuf {
+        match self {
+            Self::Coordinates(l) => run::output_dir(None, &l.plan, spec),
+            Self::Rigid(l) => {
+                let request = crate::rigid::Request { spec, set: &[], out: None, quiet: true, format: &[] };
+                crate::rigid::output_dir(&request, &l.plan)
+            }
+        }
+    }
+
+    /// What the members may vary.
+    pub fn variables(&self) -> Variables {
+        match self {
+            Self::Coordinates(l) => Variables {
+                coordinates: l.plan.system.coordinates().into_iter().map(|c| c.name).collect(),
+                parameters: l.plan.parameters.iter().map(|(n, _)| n.clone()).collect(),
+                rigid: false,
+                momenta: matches!(l.plan.problem.initial, ddirac::InitialMomentum::Momentum(_)),
+            },
+            Self::Rigid(l) => Variables {
+                coordinates: crate::rigid::shape_names(&l.plan),
+                parameters: l.plan.parameters.iter().map(|(n, _)| n.clone()).collect(),
+                rigid: true,
+                momenta: matches!(l.plan.problem.initial, ddirac::rigid::RigidInitial::Momentum { .. }),
+            },
+        }
+    }
+
+    /// The spec's text as diagnostics quote it, and its `[ensemble]` table.
+    fn table(&self) -> (&crate::diagnostics::SpecSource, Option<&toml::Spanned<crate::spec::EnsembleSpec>>) {
+        match self {
+            Self::Coordinates(l) => (&l.source, l.spec.ensemble.as_ref()),
+            Self::Rigid(l) => (&l.source, l.spec.ensemble.as_ref()),
+        }
+    }
+}
+
+/// A member's rows: times, the state's parts ([`Layout::parts`], each rows × its width) and energies.
+#[derive(Debug, Clone, Default)]
+pub struct MemberRows {
+    /// Times.
+    pub t: Vec<f64>,
+    /// The parts of the state, row after row.
+    pub state: Vec<Vec<f64>>,
+    /// The Hamiltonian of each row.
+    pub energy: Vec<f64>,
+}
+
+impl MemberRows {
+    fn new(parts: usize) -> Self {
+        Self { state: vec![vec![]; parts], ..Self::default() }
+    }
+
+    /// The rows of a member in coordinates.
+    fn of(rows: &ddirac::ensemble::Rows) -> Self {
+        Self { t: rows.t.clone(), state: vec![rows.q.clone(), rows.p.clone()], energy: rows.energy.clone() }
+    }
+}
+
+/// How a member ended, as the ensemble records it.
+pub(crate) enum Ended {
+    /// All steps taken: the steps, [`DIAGNOSTICS`] in order, the derivative path, the warning kinds.
+    Finished { steps: usize, values: [f64; 7], derivatives: String, warnings: Vec<&'static str> },
+    /// A failure at `step` (0 when refused before its first step).
+    Failed { step: usize, t: f64, error: String },
+}
+
+impl Ended {
+    /// How a member in coordinates ended.
+    fn of(status: &Status) -> Self {
+        match status {
+            Status::Finished(summary) => {
+                let e = &summary.energy;
+                let energy_error = (e.max - e.initial).max(e.initial - e.min);
+                let relative = if e.initial == 0.0 { f64::NAN } else { energy_error / e.initial.abs() };
+                let newton = &summary.newton;
+                let values = [
+                    energy_error,
+                    relative,
+                    summary.momentum_map.max_drift,
+                    newton.total_iterations as f64,
+                    newton.max_iterations as f64,
+                    newton.max_residual,
+                    summary.reference_error.unwrap_or(f64::NAN),
+                ];
+                let path = summary.derivatives.to_string();
+                let derivatives = path.split(" (").next().unwrap_or(&path).to_owned();
+                let mut warnings: Vec<&'static str> = summary.warnings.iter().map(|w| w.kind.name()).collect();
+                warnings.sort_unstable();
+                warnings.dedup();
+                Self::Finished { steps: summary.steps, values, derivatives, warnings }
+            }
+            Status::Failed { step, t, error } => Self::Failed { step: *step, t: *t, error: error.to_string() },
+        }
+    }
+}
+
 /// A spec with its members, ready to run.
 pub struct Ensemble {
     /// The spec file.
@@ -48,7 +203,7 @@ pub struct Ensemble {
     /// The `--set` assignments applied to every member.
     pub set: Vec<String>,
     /// The spec with `set` applied, validated.
-    pub base: Loaded,
+    pub base: Base,
     /// The members.
     pub members: Members,
     /// Whether the members' rows are kept.
@@ -85,16 +240,15 @@ pub struct Failure {
 pub struct Results {
     /// The first member's index.
     pub first: usize,
-    /// The number of coordinates.
-    pub n: usize,
+    /// The number of values of a member's state ([`Layout::width`]).
+    pub width: usize,
     /// Whether each member took all its steps.
     pub finished: Vec<bool>,
     /// The steps each member took.
     pub steps: Vec<u64>,
-    /// The final configurations (members × n): q_N, or that of the failed step.
-    pub final_q: Vec<f64>,
-    /// The final momenta (members × n).
-    pub final_p: Vec<f64>,
+    /// The final states (members × width, the parts of [`Layout::parts`] in order): that after the
+    /// last step, or that of the failed step.
+    pub final_state: Vec<f64>,
     /// [`DIAGNOSTICS`], in their order, each over the members.
     pub diagnostics: Vec<Vec<f64>>,
     /// The members that failed, in member order.
@@ -111,14 +265,13 @@ pub struct Results {
 }
 
 impl Results {
-    fn new(first: usize, count: usize, n: usize) -> Self {
+    fn new(first: usize, count: usize, width: usize) -> Self {
         Self {
             first,
-            n,
+            width,
             finished: vec![false; count],
             steps: vec![0; count],
-            final_q: vec![f64::NAN; count * n],
-            final_p: vec![f64::NAN; count * n],
+            final_state: vec![f64::NAN; count * width],
             diagnostics: vec![vec![f64::NAN; count]; DIAGNOSTICS.len()],
             ..Self::default()
         }
@@ -134,48 +287,44 @@ impl Results {
         self.finished.is_empty()
     }
 
-    fn record(&mut self, offset: usize, outcome: &ddirac::ensemble::Outcome, seconds: f64) {
-        let n = self.n;
-        self.final_q[offset * n..(offset + 1) * n].copy_from_slice(&outcome.final_q);
-        self.final_p[offset * n..(offset + 1) * n].copy_from_slice(&outcome.final_p);
+    /// Member `offset`'s final values of the part at `at` (a range of [`Layout`]'s columns).
+    pub fn part(&self, offset: usize, at: Range<usize>) -> &[f64] {
+        let start = offset * self.width;
+        &self.final_state[start + at.start..start + at.end]
+    }
+
+    fn record(&mut self, offset: usize, state: &[f64], ended: Ended, seconds: f64) {
+        let width = self.width;
+        self.final_state[offset * width..(offset + 1) * width].copy_from_slice(state);
         self.member_seconds += seconds;
-        match &outcome.status {
-            Status::Finished(summary) => {
+        match ended {
+            Ended::Finished { steps, values, derivatives, warnings } => {
                 self.finished[offset] = true;
-                self.steps[offset] = summary.steps as u64;
-                let e = &summary.energy;
-                let energy_error = (e.max - e.initial).max(e.initial - e.min);
-                let relative = if e.initial == 0.0 { f64::NAN } else { energy_error / e.initial.abs() };
-                let newton = &summary.newton;
-                let values = [
-                    energy_error,
-                    relative,
-                    summary.momentum_map.max_drift,
-                    newton.total_iterations as f64,
-                    newton.max_iterations as f64,
-                    newton.max_residual,
-                    summary.reference_error.unwrap_or(f64::NAN),
-                ];
+                self.steps[offset] = steps as u64;
                 for (column, value) in self.diagnostics.iter_mut().zip(values) {
                     column[offset] = value;
                 }
-                let path = summary.derivatives.to_string();
-                let short = path.split(" (").next().unwrap_or(&path).to_owned();
-                *self.derivatives.entry(short).or_default() += 1;
-                let mut kinds: Vec<&str> = summary.warnings.iter().map(|w| w.kind.name()).collect();
-                kinds.dedup();
-                for kind in kinds {
+                *self.derivatives.entry(derivatives).or_default() += 1;
+                for kind in warnings {
                     *self.warnings.entry(kind.to_owned()).or_default() += 1;
                 }
             }
-            Status::Failed { step, t, error } => {
-                self.steps[offset] = *step as u64;
-                let failure = Failure { member: self.first + offset, step: *step, t: *t, error: error.to_string() };
+            Ended::Failed { step, t, error } => {
+                self.steps[offset] = step as u64;
+                let failure = Failure { member: self.first + offset, step, t, error };
                 let at = self.failures.partition_point(|f| f.member < failure.member);
                 self.failures.insert(at, failure);
             }
         }
     }
+}
+
+/// A member's system and problem.
+pub enum Member<'e> {
+    /// Of a system in coordinates.
+    Coordinates(MemberSystem<'e>, Problem),
+    /// Of a rigid body: its own body (when parameters vary) or the spec's.
+    Rigid(std::borrow::Cow<'e, RigidModel>, RigidProblem),
 }
 
 impl Ensemble {
@@ -191,13 +340,14 @@ impl Ensemble {
 
     /// As [`Ensemble::load`], for the spec text `text` of the file `path`.
     pub fn from_text(path: &Path, text: String, set: &[String], from: MembersFrom) -> Result<Self, CliError> {
-        let base = run::load_text(path, text.clone(), set)?;
-        let table = base.spec.ensemble.as_ref();
+        let base = Base::load(path, text.clone(), set)?;
+        let variables = base.variables();
+        let (source, table) = base.table();
         let members = match from {
-            MembersFrom::File(file) => Members::read_csv(&file, &base.plan)?,
-            MembersFrom::Columns(columns) => Members::from_columns(&columns, &base.plan, "the members given")?,
+            MembersFrom::File(file) => Members::read_csv(&file, &variables)?,
+            MembersFrom::Columns(columns) => Members::from_columns(&columns, &variables, "the members given")?,
             MembersFrom::Spec => match table {
-                Some(table) => Members::generate(&base.source, table, &base.plan)?,
+                Some(table) => Members::generate(source, table, &variables)?,
                 None => {
                     return Err(CliError::Members {
                         what: format!("the spec `{}`", path.display()),
@@ -210,28 +360,35 @@ impl Ensemble {
         Ok(Self { path: path.to_owned(), text, set: set.to_vec(), base, members, trajectories })
     }
 
-    /// The coordinate names.
+    /// The coordinate names (of a rigid body: its shape coordinates).
     pub fn coordinates(&self) -> Vec<String> {
-        self.base.plan.system.coordinates().into_iter().map(|c| c.name).collect()
+        match &self.base {
+            Base::Coordinates(l) => l.plan.system.coordinates().into_iter().map(|c| c.name).collect(),
+            Base::Rigid(l) => crate::rigid::shape_names(&l.plan),
+        }
+    }
+
+    /// What each member's state is written as.
+    pub fn layout(&self) -> Layout {
+        Layout { coordinates: self.coordinates(), attitude: matches!(self.base, Base::Rigid(_)) }
     }
 
     /// The number of rows each member reports: steps 0, every, 2 every, … and the last.
     pub fn rows(&self) -> usize {
-        let (steps, every) = (self.base.plan.problem.steps, self.base.plan.output.every.max(1));
+        let ((_, steps), every) = (self.base.grid(), self.base.every());
         steps.div_ceil(every) + 1
     }
 
     /// The times of the rows each member reports ([`Ensemble::rows`] of them).
     pub fn times(&self) -> Vec<f64> {
-        let problem = &self.base.plan.problem;
-        let every = self.base.plan.output.every.max(1);
-        let mut t: Vec<f64> = (0..problem.steps).step_by(every).map(|k| k as f64 * problem.step).collect();
-        t.push(problem.steps as f64 * problem.step);
+        let ((step, steps), every) = (self.base.grid(), self.base.every());
+        let mut t: Vec<f64> = (0..steps).step_by(every).map(|k| k as f64 * step).collect();
+        t.push(steps as f64 * step);
         t
     }
 
     /// Member `i`'s system and problem.
-    pub fn member(&self, i: usize) -> Result<(MemberSystem<'_>, Problem), CliError> {
+    pub fn member(&self, i: usize) -> Result<Member<'_>, CliError> {
         let values = self.members.row(i);
         let mut entries: Vec<Entry> = vec![];
         let mut entry_values = vec![];
@@ -245,15 +402,32 @@ impl Ensemble {
                 Key::Parameter(name) => set.push(format!("parameters.{name}={value:?}")),
             }
         }
-        let (system, mut problem) = if self.members.share_the_system() {
-            (MemberSystem::Shared(self.base.plan.system.as_ref()), self.base.plan.problem.clone())
-        } else {
-            let loaded = run::load_text(&self.path, self.text.clone(), &set).map_err(|e| member_error(i, e))?;
-            (MemberSystem::Own(loaded.plan.system), loaded.plan.problem)
-        };
-        initial_entries::apply(&mut problem, &self.coordinates(), &entries, &entry_values)
-            .map_err(|why| CliError::Members { what: format!("member {i}"), why })?;
-        Ok((system, problem))
+        let shared = self.members.share_the_system();
+        let invalid = |why| CliError::Members { what: format!("member {i}"), why };
+        match &self.base {
+            Base::Coordinates(base) => {
+                let (system, mut problem) = if shared {
+                    (MemberSystem::Shared(base.plan.system.as_ref()), base.plan.problem.clone())
+                } else {
+                    let loaded = run::load_text(&self.path, self.text.clone(), &set).map_err(|e| member_error(i, e))?;
+                    (MemberSystem::Own(loaded.plan.system), loaded.plan.problem)
+                };
+                initial_entries::apply(&mut problem, &self.coordinates(), &entries, &entry_values).map_err(invalid)?;
+                Ok(Member::Coordinates(system, problem))
+            }
+            Base::Rigid(base) => {
+                let (body, mut problem) = if shared {
+                    (std::borrow::Cow::Borrowed(&base.plan.body), base.plan.problem.clone())
+                } else {
+                    let loaded =
+                        crate::rigid::load_text(&self.path, self.text.clone(), &set).map_err(|e| member_error(i, e))?;
+                    (std::borrow::Cow::Owned(loaded.plan.body), loaded.plan.problem)
+                };
+                initial_entries::apply_rigid(&mut problem, &self.coordinates(), &entries, &entry_values)
+                    .map_err(invalid)?;
+                Ok(Member::Rigid(body, problem))
+            }
+        }
     }
 
     /// Runs members `range` on `threads` threads (default: all cores), giving each member's rows
@@ -263,26 +437,20 @@ impl Ensemble {
         &self,
         range: Range<usize>,
         threads: Option<usize>,
-        rows: &(dyn Fn(usize, &Rows) -> Result<(), ddirac::OutputError> + Sync),
+        rows: &(dyn Fn(usize, &MemberRows) -> Result<(), ddirac::OutputError> + Sync),
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<Results, CliError> {
-        let plan = &self.base.plan;
-        let n = plan.system.coordinates().len();
-        let results = Mutex::new(Results::new(range.start, range.len(), n));
+        let count = range.len();
+        let results = Mutex::new(Results::new(range.start, count, self.layout().width()));
         let done = AtomicUsize::new(0);
         let first = range.start;
-        let member = |i: usize| self.member(i).map_err(|e| Box::new(e) as ddirac::OutputError);
-        let sink = |i: usize, outcome: ddirac::ensemble::Outcome| -> Result<(), ddirac::OutputError> {
-            if let Some(kept) = &outcome.rows {
+        let sink = |i: usize, state: &[f64], ended: Ended, kept: Option<&MemberRows>, seconds: f64| {
+            if let Some(kept) = kept {
                 rows(i - first, kept)?;
             }
-            let seconds = match &outcome.status {
-                Status::Finished(summary) => summary.wall_seconds,
-                Status::Failed { .. } => 0.0,
-            };
-            results.lock().expect("no panic while recording").record(i - first, &outcome, seconds);
+            results.lock().expect("no panic while recording").record(i - first, state, ended, seconds);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            Ok(())
+            Ok::<(), ddirac::OutputError>(())
         };
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| {
             CliError::Integration(Error::Invalid {
@@ -290,8 +458,43 @@ impl Ensemble {
                 why: ddirac::Reason::Other(e.to_string()),
             })
         })?;
-        let ran = pool
-            .install(|| ddirac::ensemble::run(range, &member, &plan.method, &plan.output, self.trajectories, &sink));
+        let ran = pool.install(|| match &self.base {
+            Base::Coordinates(base) => {
+                let plan = &base.plan;
+                let member = |i: usize| match self.member(i) {
+                    Ok(Member::Coordinates(system, problem)) => Ok((system, problem)),
+                    Ok(Member::Rigid(..)) => unreachable!("the members of a system in coordinates"),
+                    Err(e) => Err(Box::new(e) as ddirac::OutputError),
+                };
+                let sink = |i: usize, outcome: ddirac::ensemble::Outcome| {
+                    let seconds = match &outcome.status {
+                        Status::Finished(summary) => summary.wall_seconds,
+                        Status::Failed { .. } => 0.0,
+                    };
+                    let state: Vec<f64> = outcome.final_q.iter().chain(&outcome.final_p).copied().collect();
+                    let kept = outcome.rows.as_ref().map(MemberRows::of);
+                    sink(i, &state, Ended::of(&outcome.status), kept.as_ref(), seconds)
+                };
+                ddirac::ensemble::run(range, &member, &plan.method, &plan.output, self.trajectories, &sink)
+            }
+            Base::Rigid(base) => {
+                let plan = &base.plan;
+                range.into_par_iter().try_for_each(|i| {
+                    if ddirac::interrupt::requested() {
+                        return Err(Error::Interrupted { step: 0, t: 0.0 });
+                    }
+                    let (body, problem) = match self.member(i) {
+                        Ok(Member::Rigid(body, problem)) => (body, problem),
+                        Ok(Member::Coordinates(..)) => unreachable!("the members of a rigid body"),
+                        Err(e) => return Err(Error::Output(Box::new(e))),
+                    };
+                    let outcome = rigid::run_member(&body, problem, &plan.method, plan.every, self.trajectories)?;
+                    sink(i, &outcome.state, outcome.ended, outcome.rows.as_ref(), outcome.seconds)
+                        .map_err(Error::Output)
+                })?;
+                Ok(ddirac::ensemble::Preparations { prepared: count, renewed: 0 })
+            }
+        });
         match ran {
             Ok(preparations) => {
                 let mut results = results.into_inner().expect("no panic while recording");

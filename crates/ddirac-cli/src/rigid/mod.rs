@@ -20,7 +20,7 @@ use crate::diagnostics::{CliError, SpecSource};
 use crate::output::{self, Trajectory};
 use crate::progress::Progress;
 use crate::run_dir::RunDir;
-use crate::{estimate, lock, overrides, plot, signals, spec};
+use crate::{estimate, initial_entries, lock, overrides, plot, signals, spec};
 
 pub use plan::RigidPlan;
 
@@ -69,15 +69,25 @@ pub struct LoadedRigid {
 }
 
 /// Applies `set` to the spec text `text` of the file `path` and validates it as a rigid body's.
+/// Assignments of initial entries (`initial.Pi.2=0.5`, `initial.v.a1=3`) are applied to the validated
+/// problem ([`initial_entries::apply_rigid`]); the others edit the text.
 pub fn load_text(path: &Path, text: String, set: &[String]) -> Result<LoadedRigid, CliError> {
+    let (entries, edits) = initial_entries::split(set)?;
     let original = SpecSource::new(path.display().to_string(), text);
-    let source = if set.is_empty() {
+    let source = if edits.is_empty() {
         original
     } else {
-        SpecSource::new(format!("{} (with --set)", path.display()), overrides::apply(&original, set)?)
+        SpecSource::new(format!("{} (with --set)", path.display()), overrides::apply(&original, &edits)?)
     };
     let spec = spec::parse(&source)?;
-    let plan = plan::validate(&source, &spec)?;
+    let mut plan = plan::validate(&source, &spec)?;
+    if !entries.is_empty() {
+        let list: Vec<initial_entries::Entry> = entries.iter().map(|(_, e, _)| e.clone()).collect();
+        let values: Vec<f64> = entries.iter().map(|(_, _, v)| *v).collect();
+        let shape = shape_names(&plan);
+        initial_entries::apply_rigid(&mut plan.problem, &shape, &list, &values)
+            .map_err(|why| CliError::Set { arg: entries[0].0.clone(), why })?;
+    }
     Ok(LoadedRigid { source, spec, plan })
 }
 

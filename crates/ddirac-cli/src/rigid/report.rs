@@ -85,7 +85,7 @@ struct MethodJson {
 }
 
 impl MethodJson {
-    fn new(method: &Method) -> Self {
+    fn new(method: &Method, closed_form: bool) -> Self {
         Self {
             rule: method.rule.name(),
             reduced: method.reduced,
@@ -93,8 +93,9 @@ impl MethodJson {
             max_iterations: method.newton.max_iterations,
             jacobian: if method.newton.reuse_jacobian { "reuse" } else { "fresh" },
             check_invariance: method.check_invariance,
-            // Rigid bodies take their derivatives from dual numbers.
-            derivatives: "dual",
+            // A body that declares its principal axes is stepped with derivatives in closed form;
+            // any other takes them from dual numbers.
+            derivatives: if closed_form { "closed form" } else { "dual" },
             on_energy_jump: method.energy_jump.action.name(),
             energy_jump_threshold: method.energy_jump.threshold,
             order: method.composition.order(),
@@ -176,7 +177,7 @@ pub fn summary_json<'a>(
         shape: super::shape_names(plan),
         parameters: report::Parameters(&plan.parameters),
         symmetry: summary.symmetry.name(),
-        method: MethodJson::new(&plan.method),
+        method: MethodJson::new(&plan.method, ddirac::rigid::RigidSystem::principal_axes(&plan.body).is_some()),
         steps: summary.steps,
         step: summary.step,
         duration: summary.step * summary.steps as f64,

@@ -49,8 +49,8 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
                 .error(Some(spec.system.span()), "this command does not take the rigid body yet", "a rigid body")
                 .with_help(
                     "`ddirac run` runs `rigid_body` (also with `--compare`), `ddirac check` checks it, `ddirac \
-                     convergence` studies it, and Python's `ddirac.simulate` runs it; ensembles take the systems in \
-                     coordinates (`ddirac systems`)",
+                     convergence` studies it, `ddirac ensemble` runs its members, and Python's `ddirac.simulate` and \
+                     `ddirac.ensemble` take it; `ddirac.load` takes the systems in coordinates (`ddirac systems`)",
                 ))
         }
         SystemRef::BuiltIn(name) => {
@@ -66,9 +66,9 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<Plan, Box<SpecError>
             return Err(source
                 .error(Some(spec.system.span()), "this command does not take rigid systems yet", "a rigid system")
                 .with_help(
-                    "`ddirac run` (also with `--compare`), `ddirac check` and `ddirac convergence` take a \
-                     `[system]` with an `attitude`, and Python's `ddirac.RigidBody` and `ddirac.simulate`; ensembles \
-                     take the systems in coordinates",
+                    "`ddirac run` (also with `--compare`), `ddirac check`, `ddirac convergence` and `ddirac \
+                     ensemble` take a `[system]` with an `attitude`, and Python's `ddirac.RigidBody`, \
+                     `ddirac.simulate` and `ddirac.ensemble`; `ddirac.load` takes the systems in coordinates",
                 ))
         }
         SystemRef::Expression(table) => {

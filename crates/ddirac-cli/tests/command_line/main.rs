@@ -57,6 +57,7 @@ mod pendulum_chain;
 mod plots;
 mod rigid_body;
 mod rigid_body_figures;
+mod rigid_ensemble;
 mod rigid_examples;
 mod slurm_example;
 mod specs;

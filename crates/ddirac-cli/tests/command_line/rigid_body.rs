@@ -194,7 +194,7 @@ fn wrong_initial_velocities_and_momenta_are_refused() {
     refused(&["initial.Omega=[1, inf, 0]"], &["entry 2 of initial.Omega is not finite"]);
     refused(&["initial.Omega=[1e200, 0, 0]"], &["overflows"]);
     refused(&["initial.q=[0]"], &["a rigid body takes no `initial.q`"]);
-    refused(&["initial.q.x=1"], &["a rigid body takes no `initial.q`", "this body has no shape coordinates"]);
+    refused(&["initial.q.x=1"], &["`initial.q.x` names a shape coordinate, and this body has none"]);
 }
 
 #[test]
@@ -346,12 +346,8 @@ fn a_convergence_study_of_a_rigid_body_observes_order_2_against_rk4() {
 }
 
 #[test]
-fn commands_that_do_not_take_rigid_bodies_yet_say_so() {
-    let dir = TempDir::new("rigid-ensemble");
-    let spec = dir.file("free.toml", FREE);
-    let output = common::ddirac(&["ensemble", &spec, "--out", dir.out().to_str().unwrap()], &dir.0);
-    assert_fails(&output, &dir, &["this command does not take the rigid body yet", "`ddirac run` runs `rigid_body`"]);
-    // And a system in coordinates refuses the rigid body's keys.
+fn a_system_in_coordinates_refuses_the_rigid_body_s_keys() {
+    let dir = TempDir::new("rigid-keys-in-coordinates");
     let spec = dir.file(
         "kepler.toml",
         &std::fs::read_to_string(common::example("kepler.toml"))
@@ -443,7 +439,7 @@ fn wrong_text_rigid_systems_are_refused_where_they_are_wrong() {
     let dir = TempDir::new("rigid-text-mixed");
     let spec = dir.file("mixed.toml", &TEXT.replace("Omega = [0.3, 1.0, 0.2]", "Pi = [0.3, 2.0, 0.6]"));
     assert_fails(&run(&spec, &[], &dir), &dir, &["`initial.Pi` goes with the shape's `initial.p`"]);
-    text_refused(&["initial.v.b=1"], &["not a coordinate"]);
+    text_refused(&["initial.v.b=1"], &["`b` is not a shape coordinate; they are a"]);
     // `symmetry` belongs to rigid systems.
     let dir = TempDir::new("rigid-text-coordinates");
     let kepler = std::fs::read_to_string(common::example("kepler_expression.toml")).unwrap();
