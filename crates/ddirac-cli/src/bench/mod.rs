@@ -49,6 +49,27 @@ mod dop853 {
     ) -> Option<Result<(Vec<f64>, f64), miette::Report>> {
         None
     }
+
+    /// The end of a rigid body's DOP853 run (never made in this build).
+    pub struct RigidEnd {
+        /// R(T).
+        pub r: [[f64; 3]; 3],
+        /// The largest relative energy error over the accepted steps.
+        pub energy_error: f64,
+    }
+
+    /// `None`: DOP853 is not in this build.
+    pub fn integrate_rigid(
+        _inertia: [f64; 3],
+        _weight: [f64; 3],
+        _r0: [[f64; 3]; 3],
+        _pi0: [f64; 3],
+        _duration: f64,
+        _tolerance: f64,
+        _energy: bool,
+    ) -> Option<Result<RigidEnd, miette::Report>> {
+        None
+    }
 }
 mod ensemble;
 mod expression;
@@ -60,6 +81,7 @@ mod print;
 mod race;
 mod reduction;
 mod rigid;
+mod rigid_race;
 mod scaling;
 mod work_precision;
 

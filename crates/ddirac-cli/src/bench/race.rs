@@ -1,7 +1,8 @@
 //! `work-precision`, second part: the compositions of orders 2, 4, 6 and 8 (midpoint rule,
 //! [`ddirac::composition`]) against DOP853 (Hairer's explicit Runge–Kutta method of order 8 with
 //! step-size control, from the `ode_solvers` crate, with the `dop853` feature) on the double spherical
-//! pendulum (paper §7.2), Kepler's eccentric orbit and the charged particle (§7.1).
+//! pendulum (paper §7.2), Kepler's eccentric orbit and the charged particle (§7.1), and on the heavy
+//! top on SO(3) ([`super::rigid_race`]).
 //!
 //! DOP853 integrates the Euler–Lagrange equations of the same Lagrangian
 //! ([`ddirac::mechanics::euler_lagrange`]) with the same derivative machinery: compiled where the
@@ -96,7 +97,7 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
     let kepler = Kepler::default();
     let particle = ChargedParticle::default();
     let steps = |full: &'static [usize], short: &'static [usize]| if quick { short } else { full };
-    let races = vec![
+    let mut races = vec![
         race(
             settings,
             Case {
@@ -149,9 +150,10 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
             },
         )?,
     ];
+    races.push(super::rigid_race::race(settings)?);
     let panels = races.iter().map(panel).collect();
     let figure = Figure::new("work-precision", "Work–precision: compositions against DOP853", panels)
-        .subtitle("error of q(T) against time per run (log–log); one line per method");
+        .subtitle("error of q(T) (of R(T) for the heavy top) against time per run (log–log); one line per method");
     std::fs::create_dir_all(figures)
         .map_err(|e| miette::miette!("cannot create the figures' directory `{}`: {e}", figures.display()))?;
     let written = plot::save(&figure, figures).map_err(|e| miette::miette!("{e}"))?;
@@ -265,7 +267,7 @@ fn reference_run<S: System<N>, const N: usize>(
 
 /// Seconds per run of each method at each decade of error all of them reach, and the fastest
 /// composition against DOP853.
-fn equal_error(methods: &BTreeMap<String, Vec<Point>>) -> Vec<EqualError> {
+pub(super) fn equal_error(methods: &BTreeMap<String, Vec<Point>>) -> Vec<EqualError> {
     let at = |points: &[Point], target: f64| {
         let errors: Vec<f64> = points.iter().map(|p| p.error).collect();
         bracket(&errors, target).map(|(i, s)| between(points[i].seconds, points[i + 1].seconds, s))
@@ -354,7 +356,8 @@ fn panel(race: &Race) -> Panel {
         })
         .collect();
     let against = race.reference.split(" (").next().unwrap_or(&race.reference);
-    Panel::new("seconds per run", "error of q(T)", series)
+    let quantity = if race.system.contains("SO(3)") { "error of R(T)" } else { "error of q(T)" };
+    Panel::new("seconds per run", quantity, series)
         .scale(Scale::LogLog)
         .caption(format!("{}; against {against}", race.system))
 }

@@ -72,7 +72,7 @@ fn quick_run_measures_every_group_and_writes_the_json_file() {
     }
     // The race of the compositions (and DOP853 in a build with the `dop853` feature), with its figure.
     assert!(text.contains("== work-precision: compositions against DOP853"), "{text}");
-    for system in ["double spherical pendulum", "Kepler", "charged particle (§7.1)"] {
+    for system in ["double spherical pendulum", "Kepler", "charged particle (§7.1)", "heavy top on SO(3)"] {
         assert!(text.contains(&format!("  {system}")), "no race on {system}:\n{text}");
     }
     for figure in ["work-precision.png", "work-precision.svg"] {
@@ -146,6 +146,7 @@ fn quick_run_measures_every_group_and_writes_the_json_file() {
     assert!(text.contains("reduced (+) vs unreduced (+): "), "{text}");
 
     work_precision(&document["groups"]["work-precision"]);
+    heavy_top_race(&document["groups"]["work-precision"]);
 
     // One scheme computed by the engine and by the hand-written step.
     let difference = document["groups"]["charged-particle"]["engine_vs_specialised"].as_f64().unwrap();
@@ -188,6 +189,27 @@ fn work_precision(group: &Value) {
         assert!((n("engine") / n("specialised") - 1.0).abs() < 1e-9, "{level}");
         assert!((0.9..1.0).contains(&(n("boris") / n("engine"))), "{level}");
         assert_eq!(level["ratios"].as_array().unwrap().len(), 3);
+    }
+}
+
+/// The heavy top's race: the composition of order 2 observes its order on R(T), and each higher order
+/// is more accurate at its coarsest N than order 2 at its finest.
+fn heavy_top_race(group: &Value) {
+    let races = group["race"].as_array().unwrap();
+    let top = races.iter().find(|r| r["system"].as_str().unwrap().contains("SO(3)")).expect("the heavy top's race");
+    let points = |method: &str| -> Vec<(f64, f64)> {
+        let points = top["methods"][method].as_array().unwrap_or_else(|| panic!("no `{method}`: {top}"));
+        points.iter().map(|p| (p["parameter"].as_f64().unwrap(), p["error"].as_f64().unwrap())).collect()
+    };
+    let second = points("order 2");
+    for pair in second.windows(2) {
+        let slope = (pair[0].1 / pair[1].1).ln() / (pair[1].0 / pair[0].0).ln();
+        assert!((1.8..2.3).contains(&slope), "order 2 on the heavy top: slope {slope} ({second:?})");
+    }
+    let finest_second = second.last().unwrap().1;
+    for order in ["order 4", "order 6", "order 8"] {
+        let coarsest = points(order)[0].1;
+        assert!(coarsest < finest_second, "{order}: {coarsest:e} against order 2's {finest_second:e}");
     }
 }
 

@@ -64,12 +64,26 @@ pub fn transpose<D: DualNum<Primitive = f64> + Copy>(m: &Matrix3<D>) -> Matrix3<
 
 /// m v.
 pub fn apply<D: DualNum<Primitive = f64> + Copy>(m: &Matrix3<D>, v: &[D; 3]) -> [D; 3] {
-    [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+    let row = |i: usize| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    [row(0), row(1), row(2)]
 }
 
 /// mᵀ v.
 pub fn apply_transpose<D: DualNum<Primitive = f64> + Copy>(m: &Matrix3<D>, v: &[D; 3]) -> [D; 3] {
-    [0, 1, 2].map(|j| m[0][j] * v[0] + m[1][j] * v[1] + m[2][j] * v[2])
+    let column = |j: usize| m[0][j] * v[0] + m[1][j] * v[1] + m[2][j] * v[2];
+    [column(0), column(1), column(2)]
+}
+
+/// [f(0), f(1), f(2)], written out: `[0, 1, 2].map` is not always inlined in a step's inner loops.
+#[inline(always)]
+pub(crate) fn vector(f: impl Fn(usize) -> f64) -> [f64; 3] {
+    [f(0), f(1), f(2)]
+}
+
+/// The matrix with the entries f(i, j), written out as [`vector`].
+#[inline(always)]
+pub(crate) fn matrix(f: impl Fn(usize, usize) -> f64) -> Matrix3<f64> {
+    [vector(|j| f(0, j)), vector(|j| f(1, j)), vector(|j| f(2, j))]
 }
 
 /// a × b.
