@@ -28,6 +28,7 @@ from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, 
 from .system import System, builtin_systems
 from .convergence import ConvergenceTable, convergence
 from .ensembles import EnsembleResult, ensemble
+from .equilibria import RelativeEquilibrium, relative_equilibria
 from .run import Run, check, simulate
 from .rigid import RigidBody, RigidRun
 from .run_warnings import (
@@ -39,7 +40,7 @@ from .spec import Spec, load
 
 __all__ = [
     "ConvergenceError", "ConvergenceTable", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run",
-    "RigidBody", "RigidRun",
+    "RigidBody", "RigidRun", "RelativeEquilibrium", "relative_equilibria",
     "Spec", "SpecError", "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
     "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
     "LooseToleranceWarning", "NewtonFallbackWarning", "NoEnergyWarning", "NotInvariantWarning", "SingularChartWarning",

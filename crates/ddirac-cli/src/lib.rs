@@ -9,6 +9,7 @@ pub mod compare;
 pub mod convergence;
 pub mod diagnostics;
 pub mod ensemble;
+pub mod equilibria;
 pub mod estimate;
 pub mod exact;
 pub mod initial_entries;

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use ddirac_cli::{bench, check, compare, convergence, diagnostics, ensemble, output, plot, run, signals};
+use ddirac_cli::{bench, check, compare, convergence, diagnostics, ensemble, equilibria, output, plot, run, signals};
 
 /// Structure-preserving integrators for Lagrangian systems with abelian symmetry, after
 /// "Discrete Dirac reduction of implicit Lagrangian systems with abelian symmetry groups".
@@ -146,6 +146,16 @@ enum Command {
     /// equal to the unsharded run's files.
     #[command(after_help = "Example:
   ddirac merge out/mirror/shard-*-of-16 --out out/mirror/all")]
+    /// Find the relative equilibrium of the spec's reduced discrete map (its rule and step h) on the
+    /// momentum level of its initial data, nearest to its initial shape and shape momenta: the shape,
+    /// the group velocity, the multipliers of the linearized map and whether it is stable; writes
+    /// DIR/equilibria.json (default out/<spec file stem>-equilibria) and prints a table.
+    #[command(after_help = "Example:
+  ddirac equilibria examples/spherical_pendulum.toml --set initial.q.theta=1.0 --set initial.p.phi=1.6")]
+    Equilibria {
+        #[command(flatten)]
+        target: SpecTarget,
+    },
     Merge {
         /// The shard directories, in any order.
         #[arg(required = true, num_args = 1..)]
@@ -220,6 +230,9 @@ fn main() -> ExitCode {
             let threads = threads.map(|t| t as usize);
             let options = ensemble::files::Options { spec, set, members, out, threads, shard, quiet };
             ensemble::files::command(&options).map_err(Into::into)
+        }
+        Command::Equilibria { target: SpecTarget { input: SpecInput { spec, set }, out, quiet } } => {
+            equilibria::command(&equilibria::Options { spec, set, out, quiet }).map_err(Into::into)
         }
         Command::Merge { dirs, out, quiet } => ensemble::files::merge(&dirs, &out, quiet).map_err(Into::into),
         Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),

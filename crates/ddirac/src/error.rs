@@ -58,6 +58,20 @@ pub enum Error {
         /// The most sub-steps the step was also tried as (2, 4, …, this), when it was subdivided.
         sub_steps: Option<usize>,
     },
+    /// The search for a relative equilibrium stopped without one
+    /// ([`crate::relative_equilibrium::find`]).
+    #[error(
+        "no relative equilibrium found after {iterations} Newton correction(s) (‖Φ_h(x) − x‖∞ = {residual:.3e}): \
+         {cause}"
+    )]
+    RelativeEquilibrium {
+        /// Newton corrections taken.
+        iterations: usize,
+        /// The last residual ‖Φ_h(x) − x‖∞.
+        residual: f64,
+        /// Why the search stopped.
+        cause: SearchFailure,
+    },
     /// The state became NaN or infinite.
     #[error("step {step} (t = {}, h = {}): the state became non-finite", Time(*t), Time(*h))]
     Diverged {
@@ -732,6 +746,35 @@ impl std::fmt::Display for Time {
             write!(f, "{rounded}")
         } else {
             write!(f, "{rounded:e}")
+        }
+    }
+}
+
+/// Why the search for a relative equilibrium ([`crate::relative_equilibrium::find`]) stopped without one.
+#[derive(Debug)]
+pub enum SearchFailure {
+    /// The iterates did not settle within the iteration limit.
+    NoConvergence,
+    /// Φ_h − I is singular at an iterate: a multiplier 1.
+    Singular,
+    /// A step of the method failed at an iterate.
+    Step(Box<Error>),
+}
+
+impl std::fmt::Display for SearchFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::NoConvergence => write!(
+                f,
+                "the iterates did not settle; start nearer to one (the spec's initial shape and shape momenta are the \
+                 first guess)"
+            ),
+            Self::Singular => write!(
+                f,
+                "the linearized map has a multiplier 1 there (Φ_h − I is singular): a fold of the family, a \
+                 continuum of equilibria, or a symmetry the spec does not declare"
+            ),
+            Self::Step(error) => write!(f, "a step of the method failed at an iterate: {error}"),
         }
     }
 }

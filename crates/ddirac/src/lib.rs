@@ -56,6 +56,7 @@ mod periodicity;
 pub mod prelude;
 mod problem;
 pub mod reduction;
+pub mod relative_equilibrium;
 pub mod rigid;
 mod runtime_sized;
 #[doc(hidden)]

@@ -83,8 +83,8 @@ struct Case<'a, S, const N: usize> {
 const TOLERANCES: [f64; 9] = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13];
 const QUICK_TOLERANCES: [f64; 3] = [1e-6, 1e-8, 1e-10];
 
-/// Runs the race on the three systems and draws the figure into `figures`.
-pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Report> {
+/// Runs the race on the three systems.
+pub fn run(settings: &Settings) -> Result<Vec<Race>, miette::Report> {
     print::heading(
         "work-precision: compositions against DOP853",
         "error ‖q(T) − q_ref‖ against time per run, side by side",
@@ -97,7 +97,7 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
     let kepler = Kepler::default();
     let particle = ChargedParticle::default();
     let steps = |full: &'static [usize], short: &'static [usize]| if quick { short } else { full };
-    let mut races = vec![
+    let races = vec![
         race(
             settings,
             Case {
@@ -150,7 +150,11 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
             },
         )?,
     ];
-    races.push(super::rigid_race::race(settings)?);
+    Ok(races)
+}
+
+/// Draws the races' figure into `figures`.
+pub fn figure(races: &[Race], figures: &Path) -> Result<(), miette::Report> {
     let panels = races.iter().map(panel).collect();
     let figure = Figure::new("work-precision", "Work–precision: compositions against DOP853", panels)
         .subtitle("error of q(T) (of R(T) for the heavy top) against time per run (log–log); one line per method");
@@ -158,7 +162,7 @@ pub fn run(settings: &Settings, figures: &Path) -> Result<Vec<Race>, miette::Rep
         .map_err(|e| miette::miette!("cannot create the figures' directory `{}`: {e}", figures.display()))?;
     let written = plot::save(&figure, figures).map_err(|e| miette::miette!("{e}"))?;
     println!("  figure       {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
-    Ok(races)
+    Ok(())
 }
 
 /// The composition of `order` on the midpoint rule, with compiled derivatives (as DOP853's field):

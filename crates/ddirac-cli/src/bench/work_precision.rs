@@ -98,7 +98,9 @@ pub fn run(settings: &Settings) -> Result<Value, miette::Report> {
         rows.push(Row { steps: n, step: problem.step, errors, comparison });
     }
     let equal_error = equal_error(&rows)?;
-    let race = super::race::run(settings, &settings.figures)?;
+    let mut race = super::race::run(settings)?;
+    race.push(super::rigid_race::race(settings)?);
+    super::race::figure(&race, &settings.figures)?;
     to_json(&Report { duration: T, rows, equal_error, race })
 }
 

@@ -12,6 +12,7 @@ mod compare;
 mod convergence;
 mod energy_drift_warns;
 mod ensemble;
+mod equilibria;
 mod exact_solution_figures;
 mod examples;
 mod issue_11_angle_not_periodic;

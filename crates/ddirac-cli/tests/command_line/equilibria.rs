@@ -1,0 +1,196 @@
+//! `ddirac equilibria`: the relative equilibrium of the reduced discrete map against the closed forms
+//! of the continuous motion — the spherical pendulum's conical motion (μ² = m²gl³ sin⁴θ*/cos θ*,
+//! small-oscillation frequency ω² = g(1 + 3cos²θ*)/(l cos θ*)) and Kepler's circular orbit (r* = μ²/(mk),
+//! radial frequency = orbital frequency μ/(m r*²)): the discrete fixed point converges at order 2 in h
+//! (Kepler's is exact: r constant makes the midpoint rule's equations for r the continuous ones), the
+//! multipliers lie on the unit circle to 1e-10 and their angle / h tends to the frequency; an
+//! upright pendulum is unstable; a map with a multiplier 1 and a rigid body are refused.
+
+use crate::common;
+
+use common::{assert_fails, ddirac, stderr, TempDir};
+use serde_json::Value;
+
+/// Runs `ddirac equilibria` and returns the first equilibrium of equilibria.json.
+fn equilibrium(spec: &str, sets: &[String], dir: &TempDir) -> Value {
+    let out = dir.out();
+    let mut args = vec!["equilibria", spec, "--out", out.to_str().unwrap(), "--quiet"];
+    for set in sets {
+        args.extend(["--set", set]);
+    }
+    let output = ddirac(&args, &dir.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    file["equilibria"][0].clone()
+}
+
+fn multipliers(e: &Value) -> Vec<(f64, f64)> {
+    e["multipliers"].as_array().unwrap().iter().map(|m| (m[0].as_f64().unwrap(), m[1].as_f64().unwrap())).collect()
+}
+
+/// The root of a monotone `f` in (a, b) by bisection.
+fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if (f(m) > 0.0) == (f(a) > 0.0) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[test]
+fn the_conical_pendulum_is_found_at_order_2_with_its_frequency() {
+    let dir = TempDir::new("equilibria-conical");
+    let spec = common::example("spherical_pendulum.toml");
+    let (m, g, l, mu) = (1.0f64, 9.8f64, 1.0f64, 1.6f64);
+    let theta_star = bisect(|t| t.sin().powi(4) / t.cos() - mu * mu / (m * m * g * l.powi(3)), 1e-6, 1.5);
+    let omega = (g * (1.0 + 3.0 * theta_star.cos().powi(2)) / (l * theta_star.cos())).sqrt();
+    let azimuthal = mu / (m * l * l * theta_star.sin().powi(2));
+    let mut errors = vec![];
+    for h in [0.01, 0.005, 0.0025] {
+        let sets = [
+            format!("time.step={h}"),
+            "initial.q.theta=1.0".to_owned(),
+            format!("initial.p.phi={mu}"),
+            "initial.p.theta=0.0".to_owned(),
+        ];
+        let e = equilibrium(&spec, &sets, &dir);
+        assert_eq!(e["stable"], true, "h = {h}: {e}");
+        assert_eq!(e["momentum"][0].as_f64().unwrap(), mu);
+        let theta = e["shape"]["theta"].as_f64().unwrap();
+        assert!(e["shape_momentum"]["theta"].as_f64().unwrap().abs() < 1e-12, "{e}");
+        errors.push((theta - theta_star).abs());
+        let pairs = multipliers(&e);
+        assert_eq!(pairs.len(), 2);
+        for (re, im) in &pairs {
+            assert!((re.hypot(*im) - 1.0).abs() < 1e-10, "h = {h}: |λ| = {}", re.hypot(*im));
+        }
+        let frequency = pairs[1].1.atan2(pairs[1].0) / h;
+        let velocity = e["group_velocity"][0].as_f64().unwrap();
+        if h == 0.0025 {
+            assert!((frequency - omega).abs() < 1e-3 * omega, "angle / h = {frequency}, ω = {omega}");
+            assert!((velocity - azimuthal).abs() < 1e-3 * azimuthal, "φ̇ = {velocity}, closed form {azimuthal}");
+        }
+    }
+    for pair in errors.windows(2) {
+        let order = (pair[0] / pair[1]).log2();
+        assert!((order - 2.0).abs() < 0.1, "order {order} from {errors:?}");
+    }
+}
+
+#[test]
+fn keplers_circular_orbit_has_the_radial_frequency_of_its_revolution() {
+    let dir = TempDir::new("equilibria-kepler");
+    let spec = common::example("kepler.toml");
+    let mu = 0.8f64;
+    let r_star = mu * mu; // m = k = 1
+    let orbital = mu / (r_star * r_star);
+    let mut errors = vec![];
+    for h in [0.01, 0.005, 0.0025] {
+        let sets = [format!("time.step={h}"), "initial.q.r=0.9".to_owned(), format!("initial.p.phi={mu}")];
+        let e = equilibrium(&spec, &sets, &dir);
+        assert_eq!(e["stable"], true, "{e}");
+        // With r constant the midpoint rule's equations for r are the continuous ones: the discrete
+        // circular orbit is the exact one, and so is its angular velocity.
+        let r = e["shape"]["r"].as_f64().unwrap();
+        assert!((r - r_star).abs() < 1e-14, "h = {h}: r = {r}, r* = {r_star}");
+        let velocity = e["group_velocity"][0].as_f64().unwrap();
+        assert!((velocity - orbital).abs() < 1e-12 * orbital, "φ̇ = {velocity}, orbital {orbital}");
+        let pairs = multipliers(&e);
+        assert!(pairs.iter().all(|(re, im)| (re.hypot(*im) - 1.0).abs() < 1e-10), "{pairs:?}");
+        // The radial oscillation's frequency converges at order 2.
+        let radial = pairs[1].1.atan2(pairs[1].0) / h;
+        errors.push((radial - orbital).abs());
+        if h == 0.0025 {
+            assert!(errors[2] < 1e-3 * orbital, "radial {radial}, orbital {orbital}");
+        }
+    }
+    for pair in errors.windows(2) {
+        let order = (pair[0] / pair[1]).log2();
+        assert!((order - 2.0).abs() < 0.1, "order {order} from {errors:?}");
+    }
+}
+
+/// A pendulum in a plane that can also slide freely along x (the group): upright, it is unstable.
+const UPRIGHT: &str = r#"[system]
+name = "sliding pendulum"
+shape = ["theta"]
+group = ["x"]
+angles = ["theta"]
+lagrangian = "0.5*theta_dot^2 + 0.5*x_dot^2 + cos(theta)"
+[method]
+rule = "midpoint"
+[time]
+step = 0.01
+steps = 10
+[initial]
+q = { theta = 3.0, x = 0.0 }
+p = { theta = 0.0, x = 0.25 }
+"#;
+
+#[test]
+fn an_upright_pendulum_is_found_unstable_with_its_growth_rate() {
+    let dir = TempDir::new("equilibria-upright");
+    let spec = dir.file("upright.toml", UPRIGHT);
+    let out = dir.out();
+    let output = ddirac(&["equilibria", &spec, "--out", out.to_str().unwrap()], &dir.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(text.contains("verdict          unstable"), "{text}");
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    let e = &file["equilibria"][0];
+    assert_eq!(e["stable"], false);
+    assert!((e["shape"]["theta"].as_f64().unwrap() - std::f64::consts::PI).abs() < 1e-12, "{e}");
+    // u'' = u about θ = π: multipliers e^{±h} to O(h³) (the midpoint rule: (1 ± h/2)/(1 ∓ h/2)).
+    let h: f64 = 0.01;
+    let mut moduli: Vec<f64> = multipliers(e).iter().map(|(re, im)| re.hypot(*im)).collect();
+    moduli.sort_by(f64::total_cmp);
+    let exact = (1.0 + h / 2.0) / (1.0 - h / 2.0);
+    assert!((moduli[1] - exact).abs() < 1e-8 && (moduli[0] - 1.0 / exact).abs() < 1e-8, "{moduli:?}");
+    assert!((e["group_velocity"][0].as_f64().unwrap() - 0.25).abs() < 1e-12, "{e}");
+}
+
+#[test]
+fn a_map_with_a_multiplier_one_and_a_rigid_body_are_refused() {
+    let dir = TempDir::new("equilibria-refused");
+    // A free particle: every state at rest is fixed, Φ_h − I is singular.
+    let free = dir.file(
+        "free.toml",
+        "[system]\nshape = [\"x\"]\nlagrangian = \"0.5*x_dot^2\"\n[time]\nstep = 0.1\nsteps = 10\n[initial]\nq = [0.0]\n\
+         p = [0.0]\n",
+    );
+    let out = dir.out();
+    let output = ddirac(&["equilibria", &free, "--out", out.to_str().unwrap()], &dir.0);
+    assert_fails(&output, &dir, &["no relative equilibrium found", "multiplier 1"]);
+    let output = ddirac(&["equilibria", &common::example("dzhanibekov.toml"), "--out", out.to_str().unwrap()], &dir.0);
+    assert_fails(&output, &dir, &["this command does not take the rigid body yet"]);
+}
+
+#[test]
+fn a_step_that_turns_the_group_angle_by_more_than_a_quarter_turn_warns() {
+    let dir = TempDir::new("equilibria-ambiguous");
+    let spec = common::example("spherical_pendulum.toml");
+    let out = dir.out();
+    let sets = ["initial.q.theta=1.0", "initial.p.phi=1.6", "initial.p.theta=0.0", "time.step=1.0"];
+    let mut args = vec!["equilibria", &spec, "--out", out.to_str().unwrap()];
+    for set in &sets {
+        args.extend(["--set", set]);
+    }
+    let output = ddirac(&args, &dir.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stderr(&output).contains("warning [ambiguous_group_velocity]: `phi` turns by more than π/2"));
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    assert_eq!(file["equilibria"][0]["ambiguous_group_velocity"][0], "phi");
+    // At h = 0.01 the increment is small and nothing is said.
+    let fine = TempDir::new("equilibria-unambiguous");
+    let out = fine.out();
+    let mut args = vec!["equilibria", &spec, "--out", out.to_str().unwrap(), "--set", "time.step=0.01"];
+    for set in &sets[..3] {
+        args.extend(["--set", set]);
+    }
+    let output = ddirac(&args, &fine.0);
+    assert!(output.status.success() && !stderr(&output).contains("ambiguous"), "{}", stderr(&output));
+}

@@ -1,0 +1,84 @@
+"""ddirac.relative_equilibria: the conical pendulum against its closed form (μ² = m²gl³ sin⁴θ*/cos θ*,
+ω² = g(1 + 3cos²θ*)/(l cos θ*)), the same numbers as ``ddirac equilibria``, and wrong inputs refused."""
+
+import json
+import subprocess
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import ddirac
+from command_line import built
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def pendulum():
+    return ddirac.System("0.5*m*l^2*(theta_dot^2 + sin(theta)^2*phi_dot^2) + m*g*l*cos(theta)", shape=["theta"],
+                         group=["phi"], angles=["theta", "phi"], parameters={"m": 1.0, "l": 1.0, "g": 9.8})
+
+
+def closed_form(mu, g=9.8):
+    lo, hi = 1e-6, 1.5
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if np.sin(mid) ** 4 / np.cos(mid) < mu * mu / g:
+            lo = mid
+        else:
+            hi = mid
+    theta = 0.5 * (lo + hi)
+    return theta, np.sqrt(g * (1 + 3 * np.cos(theta) ** 2) / np.cos(theta))
+
+
+def test_the_conical_pendulum_converges_at_order_2_with_its_frequency():
+    theta_star, omega = closed_form(1.6)
+    errors = []
+    for h in (0.01, 0.005, 0.0025):
+        found = ddirac.relative_equilibria(pendulum(), momentum=[1.6], guess={"theta": 1.0}, step=h)
+        assert isinstance(found, ddirac.RelativeEquilibrium) and found.stable
+        assert found.shape_names == ["theta"] and found.group_names == ["phi"]
+        assert found.multipliers.shape == (2, 2)
+        assert np.abs(np.hypot(found.multipliers[:, 0], found.multipliers[:, 1]) - 1).max() < 1e-10
+        errors.append(abs(found.shape[0] - theta_star))
+        if h == 0.0025:
+            assert abs(found.frequencies[1] - omega) < 1e-3 * omega
+    # Without an atlas the main chart's θ stays constant at a conical motion, and the midpoint rule's
+    # equation for it is the continuous one: the fixed point is exact. (The example's atlas, in
+    # ddirac equilibria's test, gives order 2.)
+    assert max(errors) < 1e-12, errors
+
+
+def test_python_and_the_command_line_find_the_same_equilibrium(tmp_path):
+    out = tmp_path / "eq"
+    sets = ["initial.q.theta=1.0", "initial.p.phi=1.6", "initial.p.theta=0.0", "method.atlas=false"]
+    args = [built(), "equilibria", str(EXAMPLES / "spherical_pendulum.toml"), "--out", str(out), "--quiet"]
+    for s in sets:
+        args += ["--set", s]
+    subprocess.run(args, check=True)
+    written = json.loads((out / "equilibria.json").read_text())["equilibria"][0]
+    found = ddirac.relative_equilibria(pendulum(), momentum={"phi": 1.6}, guess=[1.0], step=0.005, reduced=True)
+    assert written["shape"]["theta"] == found.shape[0]
+    assert written["group_velocity"] == found.group_velocity.tolist()
+    assert written["multipliers"] == found.multipliers.tolist()
+    assert written["stable"] is found.stable
+
+
+def test_wrong_inputs_are_refused_naming_them():
+    system = pendulum()
+    with pytest.raises(ddirac.Error, match="`momentum` has 2 values"):
+        ddirac.relative_equilibria(system, momentum=[1.0, 2.0], guess=[1.0], step=0.01)
+    with pytest.raises(ddirac.Error, match="`guess` names 'psi'"):
+        ddirac.relative_equilibria(system, momentum=[1.0], guess={"psi": 1.0}, step=0.01)
+    with pytest.raises(ddirac.Error, match="not a finite number"):
+        ddirac.relative_equilibria(system, momentum=[float("nan")], guess=[1.0], step=0.01)
+    with pytest.raises(ddirac.Error, match="multiplier 1"):
+        free = ddirac.System("0.5*x_dot^2", shape=["x"])
+        ddirac.relative_equilibria(free, momentum=[], guess=[0.0], step=0.1)
+    with pytest.raises(ddirac.Error, match="rigid bodies"):
+        ddirac.relative_equilibria(ddirac.System.builtin("rigid_body"), momentum=[], guess=[], step=0.1)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ddirac.relative_equilibria(system, momentum=[1.6], guess=[1.0], step=1.0)
+    assert any("turns by more than π/2" in str(w.message) for w in caught)
