@@ -9,15 +9,19 @@
 //! ```
 //!
 //! (the names `equilibria`, `shape`, `momentum`, `group_velocity`, `multipliers` and `stable` are
-//! fixed), and prints a table.
+//! fixed), and prints a table. With `--family NAME=FROM:TO:COUNT` it continues the equilibrium along the
+//! momentum of the group coordinate NAME ([`relative_equilibrium::family`]): `equilibria` lists the
+//! members, `family` says where the stability changes and where the family ended, and `family.png`
+//! and `family.svg` draw the shape against the momentum (stable solid, unstable dashed).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use ddirac::relative_equilibrium::{self, RelativeEquilibrium, SearchOptions};
+use ddirac::relative_equilibrium::{self, Family, RelativeEquilibrium, SearchOptions};
 use serde::Serialize;
 
 use crate::diagnostics::CliError;
+use crate::plot::{self, Figure, Panel, Series};
 use crate::run_dir::RunDir;
 use crate::{lock, output, run};
 
@@ -31,6 +35,8 @@ pub struct Options {
     pub out: Option<PathBuf>,
     /// `--quiet`.
     pub quiet: bool,
+    /// `--family NAME=FROM:TO:COUNT`: the group coordinate, the first and last momentum, the count.
+    pub family: Option<(String, f64, f64, usize)>,
 }
 
 /// One relative equilibrium as `equilibria.json` writes it.
@@ -63,6 +69,8 @@ struct FileJson {
     reduced: bool,
     step: f64,
     equilibria: Vec<EquilibriumJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    family: Option<FamilyJson>,
 }
 
 fn json(found: &RelativeEquilibrium) -> EquilibriumJson {
@@ -100,11 +108,30 @@ pub fn command(options: &Options) -> Result<(), CliError> {
     let loaded = run::load(&options.spec, &options.set)?;
     loaded.print_notes();
     let plan = &loaded.plan;
-    let found =
-        relative_equilibrium::find(plan.system.as_ref(), &plan.problem, &plan.method, &SearchOptions::default())
+    let search = SearchOptions::default();
+    let (members, family) = match &options.family {
+        None => {
+            let found = relative_equilibrium::find(plan.system.as_ref(), &plan.problem, &plan.method, &search)
+                .map_err(CliError::Integration)?;
+            (vec![found], None)
+        }
+        Some((along, from, to, count)) => {
+            let values = linspace(*from, *to, *count);
+            let family = relative_equilibrium::family(
+                plan.system.as_ref(),
+                &plan.problem,
+                &plan.method,
+                along,
+                &values,
+                &search,
+            )
             .map_err(CliError::Integration)?;
+            (family.members.clone(), Some(family))
+        }
+    };
     let dir = output_dir(options.out.as_deref(), &options.spec);
     let run_dir = RunDir::open(&dir, &lock::command_line())?;
+    let staging = run_dir.staging().to_owned();
     let file = FileJson {
         ddirac_version: env!("CARGO_PKG_VERSION"),
         spec: options.spec.display().to_string(),
@@ -113,28 +140,47 @@ pub fn command(options: &Options) -> Result<(), CliError> {
         order: plan.method.composition.order(),
         reduced: plan.method.reduced,
         step: plan.problem.step,
-        equilibria: vec![json(&found)],
+        equilibria: members.iter().map(json).collect(),
+        family: family.as_ref().map(|f| FamilyJson {
+            along: f.along.clone(),
+            values: f.values(),
+            stability_changes: f.stability_changes().into_iter().map(|(a, b)| [a, b]).collect(),
+            ended: f.ended.as_ref().map(|(at, why)| EndedJson { at: *at, why: why.to_string() }),
+        }),
     };
-    let written = output::json(run_dir.staging(), "equilibria.json", &file)?;
-    run_dir.commit(&[written])?;
-    for name in &found.ambiguous {
-        eprintln!(
-            "warning [ambiguous_group_velocity]: `{name}` turns by more than π/2 in a step of h = {}: its increment is \
-             known only modulo 2π, so its group velocity only modulo 2π/h = {:.6} (the shape and the multipliers are \
-             not affected); take a smaller step to know it",
-            found.step,
-            2.0 * std::f64::consts::PI / found.step
-        );
+    let mut files = vec![output::json(&staging, "equilibria.json", &file)?];
+    if let Some(family) = &family {
+        let drawn = plot::save(&family_figure(&plan.name, family), &staging).map_err(|e| CliError::figure(&dir, e))?;
+        files.extend(drawn.iter().filter_map(|p| p.strip_prefix(&staging).ok()).map(Path::to_path_buf));
     }
-    if (found.determinant - 1.0).abs() > 1e-6 {
+    run_dir.commit(&files)?;
+    let mut warned = std::collections::BTreeSet::new();
+    for found in &members {
+        for name in found.ambiguous.iter().filter(|n| warned.insert((*n).clone())) {
+            eprintln!(
+                "warning [ambiguous_group_velocity]: `{name}` turns by more than π/2 in a step of h = {}: its increment \
+                 is known only modulo 2π, so its group velocity only modulo 2π/h = {:.6} (the shape and the \
+                 multipliers are not affected); take a smaller step to know it",
+                found.step,
+                2.0 * std::f64::consts::PI / found.step
+            );
+        }
+    }
+    if let Some(found) = members.iter().find(|f| (f.determinant - 1.0).abs() > 1e-6) {
         eprintln!(
-            "warning [not_symplectic]: det DΦ_h = {:.6} at the equilibrium, not 1: the map does not preserve volume on \
-             this level, and the multipliers need not pair as a symplectic map's",
+            "warning [not_symplectic]: det DΦ_h = {:.6} at a relative equilibrium, not 1: the map does not preserve \
+             volume on this level, and the multipliers need not pair as a symplectic map's",
             found.determinant
         );
     }
     if !options.quiet {
-        println!("{}", table(&plan.name, &found, &dir, plan.method.rule.name(), plan.method.composition.order()));
+        match &family {
+            None => {
+                let (rule, order) = (plan.method.rule.name(), plan.method.composition.order());
+                println!("{}", table(&plan.name, &members[0], &dir, rule, order));
+            }
+            Some(family) => println!("{}", family_table(&plan.name, family, &dir)),
+        }
     }
     Ok(())
 }
@@ -183,4 +229,103 @@ fn table(system: &str, found: &RelativeEquilibrium, dir: &Path, rule: &str, orde
         found.iterations, found.residual
     ));
     text
+}
+
+/// `family` of `equilibria.json`.
+#[derive(Serialize)]
+struct FamilyJson {
+    along: String,
+    values: Vec<f64>,
+    stability_changes: Vec<[f64; 2]>,
+    ended: Option<EndedJson>,
+}
+
+#[derive(Serialize)]
+struct EndedJson {
+    at: f64,
+    why: String,
+}
+
+/// `count` equally spaced values from `from` to `to`, both included.
+fn linspace(from: f64, to: f64, count: usize) -> Vec<f64> {
+    if count < 2 {
+        return vec![from];
+    }
+    let step = (to - from) / (count - 1) as f64;
+    (0..count).map(|i| if i + 1 == count { to } else { from + step * i as f64 }).collect()
+}
+
+/// The family's figure: each shape coordinate against the momentum, stable stretches solid and
+/// unstable ones dashed.
+fn family_figure(system: &str, family: &Family) -> Figure {
+    let values = family.values();
+    let members = &family.members;
+    let n = members.len();
+    let names = members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
+    let panels = names
+        .iter()
+        .enumerate()
+        .map(|(j, name)| {
+            let mut series = vec![];
+            let mut labelled = [false, false];
+            let mut start = 0;
+            for k in 1..=n {
+                if k == n || members[k].stable != members[start].stable {
+                    // The stretch start..k, joined to the next member so that the line is unbroken.
+                    let points = (start..(k + 1).min(n)).map(|i| (values[i], members[i].shape[j])).collect();
+                    let stable = members[start].stable;
+                    let mut line = Series::line(points);
+                    line.dashed = !stable;
+                    line.markers = true;
+                    if !labelled[usize::from(stable)] {
+                        line.name = Some(if stable { "stable" } else { "unstable" }.to_owned());
+                        labelled[usize::from(stable)] = true;
+                    }
+                    series.push(line);
+                    start = k;
+                }
+            }
+            Panel::new(format!("momentum p_{}", family.along), name.clone(), series)
+                .caption(format!("{name} of the relative equilibria along p_{}", family.along))
+        })
+        .collect();
+    Figure::new("family", format!("Relative equilibria of {system} along p_{}", family.along), panels)
+        .subtitle("stable solid, unstable dashed; one marker per member")
+}
+
+/// The printed table of a family.
+fn family_table(system: &str, family: &Family, dir: &Path) -> String {
+    let values = family.values();
+    let names = family.members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
+    let mut text = format!(
+        "family of relative equilibria of {system} along p_{}: {} members → {}\n",
+        family.along,
+        family.members.len(),
+        dir.display()
+    );
+    let mut header = format!("  {:>14}", format!("p_{}", family.along));
+    for name in &names {
+        header.push_str(&format!(" {name:>18}"));
+    }
+    header.push_str("  verdict     max |λ| − 1");
+    text.push_str(&header);
+    text.push('\n');
+    for (value, member) in values.iter().zip(&family.members) {
+        let mut line = format!("  {value:>14.6}");
+        for s in &member.shape {
+            line.push_str(&format!(" {s:>18.12}"));
+        }
+        let largest = member.multipliers.iter().map(|(re, im)| re.hypot(*im)).fold(0.0, f64::max);
+        let verdict = if member.stable { "stable" } else { "unstable" };
+        line.push_str(&format!("  {verdict:<10} {:>10.1e}", largest - 1.0));
+        text.push_str(&line);
+        text.push('\n');
+    }
+    for (a, b) in family.stability_changes() {
+        text.push_str(&format!("  the stability changes between p_{} = {a} and {b}\n", family.along));
+    }
+    if let Some((at, why)) = &family.ended {
+        text.push_str(&format!("  the family ends before p_{} = {at}: {why}\n", family.along));
+    }
+    text.trim_end().to_owned()
 }

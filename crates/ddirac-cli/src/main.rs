@@ -150,11 +150,20 @@ enum Command {
     /// momentum level of its initial data, nearest to its initial shape and shape momenta: the shape,
     /// the group velocity, the multipliers of the linearized map and whether it is stable; writes
     /// DIR/equilibria.json (default out/<spec file stem>-equilibria) and prints a table.
-    #[command(after_help = "Example:
-  ddirac equilibria examples/spherical_pendulum.toml --set initial.q.theta=1.0 --set initial.p.phi=1.6")]
+    ///
+    /// With --family NAME=FROM:TO:COUNT the equilibrium is continued along the momentum of the group
+    /// coordinate NAME over COUNT equally spaced values from FROM to TO (each search starting from
+    /// the member before), with where the stability changes and where the family ends (a fold), and a
+    /// figure (family.png, family.svg: the shape against the momentum, stable solid, unstable dashed).
+    #[command(after_help = "Examples:
+  ddirac equilibria examples/spherical_pendulum.toml --set initial.q.theta=1.0 --set initial.p.theta=0 --set initial.p.phi=1.6
+  ddirac equilibria examples/kepler.toml --set initial.q.r=0.7 --family phi=0.8:1.5:8")]
     Equilibria {
         #[command(flatten)]
         target: SpecTarget,
+        /// Continue along the momentum of a group coordinate: NAME=FROM:TO:COUNT.
+        #[arg(long, value_name = "NAME=FROM:TO:COUNT", value_parser = parse_family)]
+        family: Option<(String, f64, f64, usize)>,
     },
     Merge {
         /// The shard directories, in any order.
@@ -231,8 +240,8 @@ fn main() -> ExitCode {
             let options = ensemble::files::Options { spec, set, members, out, threads, shard, quiet };
             ensemble::files::command(&options).map_err(Into::into)
         }
-        Command::Equilibria { target: SpecTarget { input: SpecInput { spec, set }, out, quiet } } => {
-            equilibria::command(&equilibria::Options { spec, set, out, quiet }).map_err(Into::into)
+        Command::Equilibria { target: SpecTarget { input: SpecInput { spec, set }, out, quiet }, family } => {
+            equilibria::command(&equilibria::Options { spec, set, out, quiet, family }).map_err(Into::into)
         }
         Command::Merge { dirs, out, quiet } => ensemble::files::merge(&dirs, &out, quiet).map_err(Into::into),
         Command::Plot { dir, quiet } => plot::command(&dir, quiet).map_err(Into::into),
@@ -255,6 +264,25 @@ fn main() -> ExitCode {
 }
 
 /// `I/N` of `--shard`.
+/// `--family NAME=FROM:TO:COUNT`.
+fn parse_family(text: &str) -> Result<(String, f64, f64, usize), String> {
+    let form = "write NAME=FROM:TO:COUNT, the group coordinate and COUNT values of its momentum from FROM to TO \
+                (e.g. `phi=0.5:3.0:26`)";
+    let (name, range) = text.split_once('=').ok_or_else(|| form.to_owned())?;
+    let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+    let [from, to, count] = parts.as_slice() else { return Err(form.to_owned()) };
+    let number = |s: &str| s.parse::<f64>().map_err(|_| format!("`{s}` is not a number: {form}"));
+    let (from, to) = (number(from)?, number(to)?);
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(format!("the momenta must be finite numbers, not {from} and {to}"));
+    }
+    let count: usize = count.parse().map_err(|_| format!("`{count}` is not a count: {form}"))?;
+    if count < 2 {
+        return Err(format!("a family needs at least 2 values, not {count}"));
+    }
+    Ok((name.trim().to_owned(), from, to, count))
+}
+
 fn parse_shard(text: &str) -> Result<(usize, usize), String> {
     let (i, n) = text.split_once('/').ok_or("write the shard as I/N, e.g. 0/16")?;
     let i: usize = i.trim().parse().map_err(|_| format!("`{i}` is not a shard index"))?;

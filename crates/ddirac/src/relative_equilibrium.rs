@@ -20,13 +20,14 @@
 //! on the level of its initial group momenta. DΦ_h is taken from the method's own steps by central
 //! differences extrapolated to fourth order (Richardson: steps ±δ and ±2δ, δ = 10⁻³ max(1, |x_i|)),
 //! with an estimate of its error from the same extrapolation at 2δ; the multipliers' moduli are
-//! judged against that estimate.
+//! judged against that estimate. [`family`] continues a relative equilibrium along the momentum of one
+//! group coordinate.
 
 use nalgebra::DMatrix;
 
-use crate::coordinate::{CoordinateKind, Role};
+use crate::coordinate::{Coordinate, CoordinateKind, Role};
 pub use crate::error::SearchFailure;
-use crate::{DynState, DynStepper, DynSystem, Error, Method, Problem};
+use crate::{DynState, DynStepper, DynSystem, Error, Input, Method, Problem, Reason};
 
 /// Tolerances of the search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,6 +93,8 @@ struct ReducedMap<'a> {
     p0: Vec<f64>,
     shape: Vec<usize>,
     group: Vec<usize>,
+    coordinates: Vec<Coordinate>,
+    step: f64,
 }
 
 impl ReducedMap<'_> {
@@ -144,6 +147,28 @@ fn amax(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
+impl<'a> ReducedMap<'a> {
+    /// The map of one step of `method` with the step of `problem`, on the level of `problem`'s initial
+    /// group momenta (the momenta of the Legendre transform when it gives velocities).
+    fn new(system: &'a dyn DynSystem, problem: &Problem, method: &Method) -> Result<Self, Error> {
+        let coordinates = system.coordinates();
+        let shape = (0..coordinates.len()).filter(|&i| coordinates[i].role == Role::Shape).collect();
+        let group = (0..coordinates.len()).filter(|&i| coordinates[i].role == Role::Group).collect();
+        let one_step = Problem::new(problem.step, 1, problem.q0.clone(), problem.initial.clone());
+        let mut stepper = system.stepper(&one_step, method)?;
+        stepper.set_wrap_angles(false);
+        let first = stepper.row();
+        Ok(Self { stepper, q0: first.q, p0: first.p, shape, group, coordinates, step: problem.step })
+    }
+
+    /// The initial data's shape and shape momenta.
+    fn start(&self) -> Vec<f64> {
+        let mut x: Vec<f64> = self.shape.iter().map(|&i| self.q0[i]).collect();
+        x.extend(self.shape.iter().map(|&i| self.p0[i]));
+        x
+    }
+}
+
 /// The relative equilibrium of the reduced discrete map of `method` with the step of `problem`, on
 /// the momentum level of `problem`'s initial group momenta, nearest (by Newton's method) to its initial
 /// shape and shape momenta. A system without group coordinates has equilibria: fixed points of the
@@ -157,17 +182,14 @@ pub fn find(
     method: &Method,
     options: &SearchOptions,
 ) -> Result<RelativeEquilibrium, Error> {
-    let coordinates = system.coordinates();
-    let shape: Vec<usize> = (0..coordinates.len()).filter(|&i| coordinates[i].role == Role::Shape).collect();
-    let group: Vec<usize> = (0..coordinates.len()).filter(|&i| coordinates[i].role == Role::Group).collect();
-    let one_step = Problem::new(problem.step, 1, problem.q0.clone(), problem.initial.clone());
-    let mut stepper = system.stepper(&one_step, method)?;
-    stepper.set_wrap_angles(false);
-    let first = stepper.row();
-    let mut map = ReducedMap { stepper, q0: first.q.clone(), p0: first.p.clone(), shape, group };
+    let mut map = ReducedMap::new(system, problem, method)?;
+    let start = map.start();
+    solve(&mut map, start, options)
+}
+
+/// Newton's method on Φ_h(x) − x from `x`, and the relative equilibrium it finds.
+fn solve(map: &mut ReducedMap<'_>, mut x: Vec<f64>, options: &SearchOptions) -> Result<RelativeEquilibrium, Error> {
     let n = map.shape.len();
-    let mut x: Vec<f64> = map.shape.iter().map(|&i| first.q[i]).collect();
-    x.extend(map.shape.iter().map(|&i| first.p[i]));
     let failed = |iterations: usize, residual: f64, cause: SearchFailure| Error::RelativeEquilibrium {
         iterations,
         residual,
@@ -224,6 +246,7 @@ pub fn find(
     let modulus_tolerance = (100.0 * error * (2 * n) as f64).max(1e-9);
     let largest = multipliers.iter().map(|(re, im)| re.hypot(*im)).fold(0.0, f64::max);
     let stable = largest <= 1.0 + modulus_tolerance;
+    let coordinates = &map.coordinates;
     let names = |indices: &[usize]| indices.iter().map(|&i| coordinates[i].name.clone()).collect::<Vec<_>>();
     let ambiguous = map
         .group
@@ -238,8 +261,8 @@ pub fn find(
         shape_momentum: x[n..].to_vec(),
         group_names: names(&map.group),
         momentum: map.group.iter().map(|&i| map.p0[i]).collect(),
-        group_velocity: increment.iter().map(|d| d / problem.step).collect(),
-        step: problem.step,
+        group_velocity: increment.iter().map(|d| d / map.step).collect(),
+        step: map.step,
         multipliers,
         modulus_tolerance,
         stable,
@@ -248,4 +271,89 @@ pub fn find(
         iterations,
         ambiguous,
     })
+}
+
+/// A family of relative equilibria along the momentum of one group coordinate.
+#[derive(Debug)]
+pub struct Family {
+    /// The group coordinate whose momentum varies.
+    pub along: String,
+    /// The relative equilibria found, one per value of its momentum, in the order of the values.
+    pub members: Vec<RelativeEquilibrium>,
+    /// Where the family ended before the last value, and why: the value whose search failed and its
+    /// error (natural continuation ends at a fold, where the family turns back in the momentum).
+    pub ended: Option<(f64, Error)>,
+}
+
+impl Family {
+    /// The momentum of `along` of each member.
+    pub fn values(&self) -> Vec<f64> {
+        let k = self.members.first().map_or(0, |m| m.group_names.iter().position(|g| *g == self.along).unwrap_or(0));
+        self.members.iter().map(|m| m.momentum[k]).collect()
+    }
+
+    /// The consecutive values between which the stability changes.
+    pub fn stability_changes(&self) -> Vec<(f64, f64)> {
+        let values = self.values();
+        (1..self.members.len())
+            .filter(|&k| self.members[k].stable != self.members[k - 1].stable)
+            .map(|k| (values[k - 1], values[k]))
+            .collect()
+    }
+}
+
+/// The family of relative equilibria through the one [`find`] finds for `problem`, continued along the
+/// momentum of the group coordinate `along` over `values` (natural continuation: each member's search
+/// starts from the member before, extrapolated linearly from the two before). The first value's search
+/// starts from `problem`'s shape; when it fails, so does the family. A later failure ends the family
+/// there ([`Family::ended`]).
+pub fn family(
+    system: &dyn DynSystem,
+    problem: &Problem,
+    method: &Method,
+    along: &str,
+    values: &[f64],
+    options: &SearchOptions,
+) -> Result<Family, Error> {
+    let mut map = ReducedMap::new(system, problem, method)?;
+    let refuse = |why: String| Error::Invalid { what: Input::Argument("along".into()), why: Reason::Other(why) };
+    let Some(&index) = map.group.iter().find(|&&i| map.coordinates[i].name == along) else {
+        let group: Vec<&str> = map.group.iter().map(|&i| map.coordinates[i].name.as_str()).collect();
+        return Err(refuse(match group.is_empty() {
+            true => format!("`{along}` is not a group coordinate: this system has none, and no momentum to vary"),
+            false => format!("`{along}` is not a group coordinate; the group coordinates are {}", group.join(", ")),
+        }));
+    };
+    if values.is_empty() {
+        return Err(refuse("the family has no values of the momentum".into()));
+    }
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(refuse(format!("the momentum {v} is not a finite number")));
+    }
+    let mut members: Vec<RelativeEquilibrium> = vec![];
+    let mut ended = None;
+    for (k, &value) in values.iter().enumerate() {
+        map.p0[index] = value;
+        let state = |m: &RelativeEquilibrium| [m.shape.clone(), m.shape_momentum.clone()].concat();
+        let guess = match members.len() {
+            0 => map.start(),
+            1 => state(&members[0]),
+            len => {
+                let (a, b) = (state(&members[len - 2]), state(&members[len - 1]));
+                let (va, vb) = (values[k - 2], values[k - 1]);
+                let t = if vb != va { (value - vb) / (vb - va) } else { 0.0 };
+                b.iter().zip(&a).map(|(b, a)| b + t * (b - a)).collect()
+            }
+        };
+        match solve(&mut map, guess, options) {
+            Ok(found) => members.push(found),
+            Err(error @ Error::Interrupted { .. }) => return Err(error),
+            Err(error) if k == 0 => return Err(error),
+            Err(error) => {
+                ended = Some((value, error));
+                break;
+            }
+        }
+    }
+    Ok(Family { along: along.to_owned(), members, ended })
 }

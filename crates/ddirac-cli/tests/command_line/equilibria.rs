@@ -194,3 +194,108 @@ fn a_step_that_turns_the_group_angle_by_more_than_a_quarter_turn_warns() {
     let output = ddirac(&args, &fine.0);
     assert!(output.status.success() && !stderr(&output).contains("ambiguous"), "{}", stderr(&output));
 }
+
+/// A body in a central field −1/r − a/r³: for p_phi = μ above μ_c = (12a)^{1/4} it has two circular
+/// orbits, r² − μ² r + 3a = 0, the outer stable and the inner unstable; they meet at the fold μ_c.
+const TWO_CIRCLES: &str = r#"[system]
+name = "orbits with an inner unstable circle"
+shape = ["r"]
+group = ["phi"]
+angles = ["phi"]
+lagrangian = "0.5*(r_dot^2 + r^2*phi_dot^2) + 1/r + a/r^3"
+[parameters]
+a = 0.1
+[method]
+rule = "midpoint"
+[time]
+step = 0.01
+steps = 10
+[initial]
+q = { r = 1.5, phi = 0.0 }
+p = { r = 0.0, phi = 1.4 }
+"#;
+
+fn circles(mu: f64) -> (f64, f64) {
+    let root = (mu.powi(4) - 1.2).sqrt();
+    ((mu * mu - root) / 2.0, (mu * mu + root) / 2.0)
+}
+
+#[test]
+fn a_family_is_continued_along_the_momentum_to_its_fold() {
+    let dir = TempDir::new("equilibria-family");
+    let spec = dir.file("circles.toml", TWO_CIRCLES);
+    let out = dir.out();
+    let output = ddirac(&["equilibria", &spec, "--family", "phi=1.4:1.0:41", "--out", out.to_str().unwrap()], &dir.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8_lossy(&output.stdout).into_owned();
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    let members = file["equilibria"].as_array().unwrap();
+    let fold = 1.2f64.powf(0.25);
+    // The outer circles down to the last value above the fold, each the exact one, all stable.
+    let last = members.last().unwrap()["momentum"][0].as_f64().unwrap();
+    assert!(last > fold && last - 0.01 < fold, "the family ends at {last}, the fold is at {fold}:\n{text}");
+    for m in members {
+        let mu = m["momentum"][0].as_f64().unwrap();
+        let r = m["shape"]["r"].as_f64().unwrap();
+        assert!((r - circles(mu).1).abs() < 1e-10 * r, "μ = {mu}: r = {r}, outer circle {}", circles(mu).1);
+        assert_eq!(m["stable"], true, "μ = {mu}");
+    }
+    let family = &file["family"];
+    assert_eq!(family["along"], "phi");
+    assert!(family["stability_changes"].as_array().unwrap().is_empty());
+    let at = family["ended"]["at"].as_f64().unwrap();
+    assert!(at < fold && at + 0.01 > fold, "ended at {at}");
+    assert!(text.contains("the family ends before p_phi ="), "{text}");
+    for figure in ["family.png", "family.svg"] {
+        assert!(std::fs::metadata(out.join(figure)).map(|m| m.len() > 1000).unwrap_or(false), "{figure}");
+    }
+    // The inner circles, from a guess near them, upwards: all unstable. (They shrink as 3a/μ², and turn
+    // at μ/r² = 340 rad/s at μ = 2: h = 0.001 resolves them.)
+    let inner = TempDir::new("equilibria-family-inner");
+    let out = inner.out();
+    let args = [
+        "equilibria",
+        &spec,
+        "--family",
+        "phi=1.4:2.0:7",
+        "--set",
+        "initial.q.r=0.2",
+        "--set",
+        "time.step=0.001",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    let output = ddirac(&args, &inner.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    let members = file["equilibria"].as_array().unwrap();
+    assert_eq!(members.len(), 7);
+    for m in members {
+        let mu = m["momentum"][0].as_f64().unwrap();
+        let r = m["shape"]["r"].as_f64().unwrap();
+        assert!((r - circles(mu).0).abs() < 1e-10 * r, "μ = {mu}: r = {r}, inner circle {}", circles(mu).0);
+        assert_eq!(m["stable"], false, "μ = {mu}");
+    }
+    assert!(file["family"]["ended"].is_null());
+}
+
+#[test]
+fn a_family_of_wrong_shape_is_refused() {
+    let dir = TempDir::new("equilibria-family-refused");
+    let spec = dir.file("circles.toml", TWO_CIRCLES);
+    let out = dir.out();
+    for (family, needle) in [
+        ("r=1:2:3", "`r` is not a group coordinate; the group coordinates are phi"),
+        ("phi=1:2", "NAME=FROM:TO:COUNT"),
+        ("phi=1:x:3", "NAME=FROM:TO:COUNT"),
+        ("phi=1:2:1", "at least 2"),
+        ("phi=1:inf:3", "finite"),
+    ] {
+        let output = ddirac(&["equilibria", &spec, "--family", family, "--out", out.to_str().unwrap()], &dir.0);
+        assert_fails(&output, &dir, &[needle]);
+    }
+    // A family whose first member is not found fails as the single search does.
+    let output = ddirac(&["equilibria", &spec, "--family", "phi=0.5:0.6:2", "--out", out.to_str().unwrap()], &dir.0);
+    assert_fails(&output, &dir, &["no relative equilibrium found"]);
+}
