@@ -120,4 +120,8 @@ def relative_equilibria(system: System, momentum: Values, guess: Values, step: f
         warnings.warn(f"`{name}` turns by more than π/2 in a step of h = {found.step}: its group velocity is known "
                       f"only modulo 2π/h = {2 * math.pi / found.step:.6g}; take a smaller step to know it",
                       UserWarning, stacklevel=2)
+    if abs(found.determinant - 1.0) > 1e-6:
+        warnings.warn(f"det DΦ_h = {found.determinant:.6g} at the relative equilibrium, not 1: the map does not "
+                      f"preserve volume on this level, and the multipliers need not pair as a symplectic map's",
+                      UserWarning, stacklevel=2)
     return found

@@ -16,6 +16,36 @@ impl<S: System<N>, const N: usize> ode_solvers::System<f64, DVector<f64>> for Fi
     }
 }
 
+/// DOP853 for `field` from y0 over `duration` with relative and absolute tolerance `tolerance`:
+/// Hairer's parameters of step-size control (safety 0.9, factors 1/3 … 6), at most 10⁷ steps, every
+/// accepted step kept (the last ends at T; the dense output's interpolation is not needed).
+fn solver<F: ode_solvers::System<f64, DVector<f64>>>(
+    field: F,
+    y0: DVector<f64>,
+    duration: f64,
+    tolerance: f64,
+) -> Dop853<f64, DVector<f64>, F> {
+    let output = OutputType::Sparse;
+    Dop853::from_param(
+        field,
+        0.0,
+        duration,
+        duration,
+        y0,
+        tolerance,
+        tolerance,
+        0.9,
+        0.0,
+        1.0 / 3.0,
+        6.0,
+        duration,
+        0.0,
+        10_000_000,
+        1000,
+        output,
+    )
+}
+
 /// Whether this build has the peer.
 pub const AVAILABLE: bool = true;
 
@@ -45,26 +75,7 @@ fn solve<S: System<N>, const N: usize>(
     let v0 = legendre::velocity(system, q0, p0).0;
     let field = EulerLagrange::new(system, true, q0, &v0);
     let y0 = DVector::from_iterator(2 * N, q0.iter().chain(&v0).copied());
-    // Every accepted step is kept (the last ends at T; the dense output's interpolation is not needed).
-    let output = OutputType::Sparse;
-    let mut solver = Dop853::from_param(
-        Field(&field),
-        0.0,
-        duration,
-        duration,
-        y0,
-        tolerance,
-        tolerance,
-        0.9,
-        0.0,
-        1.0 / 3.0,
-        6.0,
-        duration,
-        0.0,
-        10_000_000,
-        1000,
-        output,
-    );
+    let mut solver = solver(Field(&field), y0, duration, tolerance);
     solver.integrate().map_err(|e| miette::miette!("DOP853 at tolerance {tolerance:e} failed: {e}"))?;
     let last = solver.y_out().last().ok_or_else(|| miette::miette!("DOP853 gave no output"))?;
     let q: Vec<f64> = last.iter().take(N).copied().collect();
@@ -126,24 +137,7 @@ pub fn integrate_rigid(
     energy: bool,
 ) -> Option<Result<RigidEnd, miette::Report>> {
     let y0 = DVector::from_iterator(12, r0.iter().flatten().chain(&pi0).copied());
-    let mut solver = Dop853::from_param(
-        RigidField { inertia, weight },
-        0.0,
-        duration,
-        duration,
-        y0,
-        tolerance,
-        tolerance,
-        0.9,
-        0.0,
-        1.0 / 3.0,
-        6.0,
-        duration,
-        0.0,
-        10_000_000,
-        1000,
-        OutputType::Sparse,
-    );
+    let mut solver = solver(RigidField { inertia, weight }, y0, duration, tolerance);
     let solved = solver.integrate().map_err(|e| miette::miette!("DOP853 at tolerance {tolerance:e} failed: {e}"));
     Some(solved.and_then(|_| {
         let last = solver.y_out().last().ok_or_else(|| miette::miette!("DOP853 gave no output"))?;

@@ -223,6 +223,20 @@ fn race<S: System<N>, const N: usize>(settings: &Settings, case: Case<'_, S, N>)
         };
         contenders.push(Contender::new(format!("DOP853, tolerance {tolerance:e}"), 1, run));
     }
+    let methods = timed_points(name, settings, contenders, labels)?;
+    let equal_error = equal_error(&methods);
+    let long_run = long_run(system, erased, &q0, &p0, duration, &methods)?;
+    Ok(Race { system: name, duration, reference, methods, equal_error, long_run })
+}
+
+/// Times `contenders` side by side and gives each method its points: the labels (method, N or
+/// tolerance, error) of the contenders in order, with the median seconds per run; prints them.
+pub(super) fn timed_points(
+    name: &str,
+    settings: &Settings,
+    contenders: Vec<Contender<'_>>,
+    labels: Vec<(String, f64, f64)>,
+) -> Result<BTreeMap<String, Vec<Point>>, miette::Report> {
     let comparison = compare(name, settings.schedule, contenders, &[])?;
     let mut methods: BTreeMap<String, Vec<Point>> = BTreeMap::new();
     for ((method, parameter, error), timing) in labels.into_iter().zip(&comparison.timings) {
@@ -235,9 +249,7 @@ fn race<S: System<N>, const N: usize>(settings: &Settings, case: Case<'_, S, N>)
             println!("    {method:<10} {:>12.3e} {:>12.3e} {:>12.3e}", p.parameter, p.error, p.seconds);
         }
     }
-    let equal_error = equal_error(&methods);
-    let long_run = long_run(system, erased, &q0, &p0, duration, &methods)?;
-    Ok(Race { system: name, duration, reference, methods, equal_error, long_run })
+    Ok(methods)
 }
 
 /// q(T) of the reference run: DOP853 at tolerance 1e-14 when the build has it, checked against the

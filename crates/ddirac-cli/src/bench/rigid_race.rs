@@ -18,8 +18,8 @@ use ddirac::systems::RigidBody;
 use ddirac::{Composition, Method, Rule};
 
 use super::dop853;
-use super::harness::{compare, Contender};
-use super::race::{equal_error, LongRun, Point, Race};
+use super::harness::Contender;
+use super::race::{equal_error, timed_points, LongRun, Point, Race};
 use super::{failed, Settings};
 
 type M3 = [[f64; 3]; 3];
@@ -108,18 +108,7 @@ pub fn race(settings: &Settings) -> Result<Race, miette::Report> {
         };
         contenders.push(Contender::new(format!("DOP853, tolerance {tolerance:e}"), 1, run));
     }
-    let comparison = compare(NAME, settings.schedule, contenders, &[])?;
-    let mut methods: BTreeMap<String, Vec<Point>> = BTreeMap::new();
-    for ((method, parameter, error), timing) in labels.into_iter().zip(&comparison.timings) {
-        let seconds = timing.ns_per_step.median * 1e-9;
-        methods.entry(method).or_default().push(Point { parameter, error, seconds });
-    }
-    println!("    {:<10} {:>12} {:>12} {:>12}", "method", "N or tol.", "error", "s per run");
-    for (method, points) in &methods {
-        for p in points {
-            println!("    {method:<10} {:>12.3e} {:>12.3e} {:>12.3e}", p.parameter, p.error, p.seconds);
-        }
-    }
+    let methods = timed_points(NAME, settings, contenders, labels)?;
     let equal_error = equal_error(&methods);
     let long_run = long_run(&methods)?;
     Ok(Race { system: NAME, duration: DURATION, reference, methods, equal_error, long_run })

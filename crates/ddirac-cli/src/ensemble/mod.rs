@@ -165,29 +165,50 @@ pub(crate) enum Ended {
 }
 
 impl Ended {
+    /// A member that took its `steps`: [`DIAGNOSTICS`] from its energy, momentum map drift, Newton
+    /// statistics and reference error, and each kind of its warnings once.
+    #[allow(clippy::too_many_arguments)]
+    fn finished(
+        steps: usize,
+        energy: &ddirac::Stats,
+        momentum_map_drift: f64,
+        newton: &ddirac::diagnostics::NewtonSummary,
+        reference_error: Option<f64>,
+        derivatives: String,
+        warnings: &[ddirac::Warning],
+    ) -> Self {
+        let energy_error = (energy.max - energy.initial).max(energy.initial - energy.min);
+        let relative = if energy.initial == 0.0 { f64::NAN } else { energy_error / energy.initial.abs() };
+        let values = [
+            energy_error,
+            relative,
+            momentum_map_drift,
+            newton.total_iterations as f64,
+            newton.max_iterations as f64,
+            newton.max_residual,
+            reference_error.unwrap_or(f64::NAN),
+        ];
+        let mut warnings: Vec<&'static str> = warnings.iter().map(|w| w.kind.name()).collect();
+        warnings.sort_unstable();
+        warnings.dedup();
+        Self::Finished { steps, values, derivatives, warnings }
+    }
+
     /// How a member in coordinates ended.
     fn of(status: &Status) -> Self {
         match status {
             Status::Finished(summary) => {
-                let e = &summary.energy;
-                let energy_error = (e.max - e.initial).max(e.initial - e.min);
-                let relative = if e.initial == 0.0 { f64::NAN } else { energy_error / e.initial.abs() };
-                let newton = &summary.newton;
-                let values = [
-                    energy_error,
-                    relative,
-                    summary.momentum_map.max_drift,
-                    newton.total_iterations as f64,
-                    newton.max_iterations as f64,
-                    newton.max_residual,
-                    summary.reference_error.unwrap_or(f64::NAN),
-                ];
                 let path = summary.derivatives.to_string();
                 let derivatives = path.split(" (").next().unwrap_or(&path).to_owned();
-                let mut warnings: Vec<&'static str> = summary.warnings.iter().map(|w| w.kind.name()).collect();
-                warnings.sort_unstable();
-                warnings.dedup();
-                Self::Finished { steps: summary.steps, values, derivatives, warnings }
+                Self::finished(
+                    summary.steps,
+                    &summary.energy,
+                    summary.momentum_map.max_drift,
+                    &summary.newton,
+                    summary.reference_error,
+                    derivatives,
+                    &summary.warnings,
+                )
             }
             Status::Failed { step, t, error } => Self::Failed { step: *step, t: *t, error: error.to_string() },
         }

@@ -90,24 +90,16 @@ pub(super) fn run_member(
         }
     }
     let summary = stepper.summary();
-    let e = &summary.energy;
-    let energy_error = (e.max - e.initial).max(e.initial - e.min);
-    let relative = if e.initial == 0.0 { f64::NAN } else { energy_error / e.initial.abs() };
-    let newton = &summary.newton;
-    let values = [
-        energy_error,
-        relative,
-        summary.momentum_map.max_drift,
-        newton.total_iterations as f64,
-        newton.max_iterations as f64,
-        newton.max_residual,
-        f64::NAN,
-    ];
     let derivatives = if body.principal_axes().is_some() { "closed form" } else { "dual" };
-    let mut warnings: Vec<&'static str> = summary.warnings.iter().map(|w| w.kind.name()).collect();
-    warnings.sort_unstable();
-    warnings.dedup();
+    let ended = Ended::finished(
+        summary.steps,
+        &summary.energy,
+        summary.momentum_map.max_drift,
+        &summary.newton,
+        None,
+        derivatives.to_owned(),
+        &summary.warnings,
+    );
     let state = state(&stepper.row());
-    let ended = Ended::Finished { steps: summary.steps, values, derivatives: derivatives.to_owned(), warnings };
     Ok(RigidOutcome { state, ended, rows, seconds: started.elapsed().as_secs_f64() })
 }
