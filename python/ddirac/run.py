@@ -29,8 +29,10 @@ class Run:
     group coordinates), ``chart`` (rows: the chart of the system's atlas each row's step was in, 0 for
     the main chart, in which ``q`` and ``p`` are given; None when the run cannot switch charts: a system
     without an atlas, or ``atlas=False``), ``summary`` (the dict ``summary.json`` holds),
-    ``coordinates`` (the names of the columns of ``q`` and ``p``) and ``group`` (those of
-    ``momentum_map``).
+    ``coordinates`` (the names of the columns of ``q`` and ``p``), ``group`` (those of
+    ``momentum_map``) and ``sensitivity`` (with ``sensitivities=True``: the tangent map
+    d(q_N, p_N)/d(q_0, p_0), shape (2n, 2n), rows and columns q then p in the order of ``coordinates``;
+    else None).
     """
 
     t: np.ndarray
@@ -43,6 +45,7 @@ class Run:
     summary: dict[str, Any]
     coordinates: list[str]
     group: list[str]
+    sensitivity: Optional[np.ndarray]
 
     def __init__(self, arrays: Mapping[str, Any], coordinates: Sequence[str], group: Sequence[str]) -> None:
         self.t = arrays["t"]
@@ -55,6 +58,8 @@ class Run:
         self.summary = arrays["summary"]
         self.coordinates = list(coordinates)
         self.group = list(group)
+        tangent = self.summary.get("sensitivity")
+        self.sensitivity = None if tangent is None else np.array(tangent["state"], dtype=float)
 
     def __len__(self) -> int:
         return len(self.t)
@@ -145,7 +150,9 @@ def simulate(system: System, q0: Optional[Vector] = None, p0: Optional[Vector] =
     ``on_energy_jump`` (``warn``, ``error``, ``ignore``), ``energy_jump_threshold``, ``order`` (2, 4,
     6 or 8: orders above 2 compose the basic step of a symmetric rule, midpoint or trapezoid) and
     ``composition`` (its coefficient set: ``suzuki``, ``kahan-li`` or ``triple-jump``) and ``atlas``
-    (``False`` keeps every step in the main chart of a system with an atlas of charts). Every
+    (``False`` keeps every step in the main chart of a system with an atlas of charts) and
+    ``sensitivities`` (``True`` propagates the tangent map d(q_N, p_N)/d(q_0, p_0) through every step
+    by the implicit function theorem: :attr:`Run.sensitivity`). Every
     ``every``-th row is kept (and the last).
 
     The GIL is released while the run integrates; Ctrl-C stops it with ``KeyboardInterrupt``.

@@ -31,6 +31,7 @@ VALUES = {
     "order": 4,
     "composition": "triple-jump",
     "atlas": False,
+    "sensitivities": True,
 }
 
 

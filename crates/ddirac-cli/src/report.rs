@@ -35,7 +35,16 @@ pub struct SummaryJson<'a> {
     total_wall_seconds: Option<f64>,
     reference_error: Option<f64>,
     chart_switches: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sensitivity: Option<SensitivityJson<'a>>,
     warnings: Vec<WarningJson>,
+}
+
+/// With `method.sensitivities`: the tangent map d(q_N, p_N)/d(q_0, p_0) (`state`, 2n rows of 2n,
+/// q then p in the coordinates' order).
+#[derive(Serialize)]
+struct SensitivityJson<'a> {
+    state: &'a [Vec<f64>],
 }
 
 /// One warning: `{kind, step, t, message, count}` (`step` and `t` are `null` for a finding before
@@ -88,6 +97,7 @@ struct MethodJson {
     composition: &'static str,
     stages: usize,
     atlas: bool,
+    sensitivities: bool,
 }
 
 #[derive(Serialize)]
@@ -229,6 +239,7 @@ pub fn summary_json_of<'a>(record: RunRecord<'a>, summary: &'a Summary) -> Summa
             composition: method.composition.name(),
             stages: method.composition.coefficients().len(),
             atlas: method.atlas,
+            sensitivities: method.sensitivities,
             energy_jump_threshold: method.energy_jump.threshold,
         },
         steps: summary.steps,
@@ -251,6 +262,7 @@ pub fn summary_json_of<'a>(record: RunRecord<'a>, summary: &'a Summary) -> Summa
         total_wall_seconds: record.total_seconds,
         reference_error: summary.reference_error,
         chart_switches: summary.chart_switches,
+        sensitivity: summary.sensitivity.as_deref().map(|state| SensitivityJson { state }),
         warnings: summary.warnings.iter().map(WarningJson::new).collect(),
     }
 }

@@ -207,6 +207,9 @@ impl RigidArgs {
         if self.method.0.atlas.is_some() {
             return Err(raise("a rigid body takes no `atlas`: its attitude is advanced on SO(3), in no chart"));
         }
+        if self.method.0.sensitivities == Some(true) {
+            return Err(raise("a rigid body has no tangent map yet: `sensitivities` is for systems in coordinates"));
+        }
         let method = keys::method::method(&self.method.0, &[], Spelling::Argument).map_err(|e| raise(e.text()))?;
         let problem = RigidProblem { s0, ..RigidProblem::new(step, steps, r0, initial) };
         // The attitude and the data are checked before the GIL is released.

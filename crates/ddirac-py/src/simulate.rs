@@ -56,6 +56,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for MethodArgs {
             order: get(&dict, MethodKey::Order)?,
             composition: get(&dict, MethodKey::Composition)?,
             atlas: get(&dict, MethodKey::Atlas)?,
+            sensitivities: get(&dict, MethodKey::Sensitivities)?,
         }))
     }
 }

@@ -118,6 +118,7 @@ impl LoadedSpec {
                 MethodKey::Order => d.set_item(key.name(), k.order)?,
                 MethodKey::Composition => d.set_item(key.name(), &k.composition)?,
                 MethodKey::Atlas => d.set_item(key.name(), k.atlas)?,
+                MethodKey::Sensitivities => d.set_item(key.name(), k.sensitivities)?,
                 MethodKey::ConnectionRow(_) | MethodKey::ConnectionEntry(..) => {}
             }
         }

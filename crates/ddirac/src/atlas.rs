@@ -139,6 +139,19 @@ fn from_main<S: SystemIn<Dm>, Dm: Dim, D: Scalar>(system: &S, chart: usize, q: &
     }
 }
 
+/// The coordinates in chart `to` of the point with coordinates `q` in chart `from`, on any scalar.
+pub(crate) fn map<S: SystemIn<Dm>, Dm: Dim, D: Scalar>(
+    system: &S,
+    from: usize,
+    to: usize,
+    q: &Dm::Array<D>,
+) -> Dm::Array<D> {
+    if from == to {
+        return q.clone();
+    }
+    from_main(system, to, &to_main(system, from, q))
+}
+
 /// The coordinates in chart `to` of the point with coordinates `q` in chart `from`.
 pub fn point<S: SystemIn<Dm>, Dm: Dim>(system: &S, from: usize, to: usize, q: &Dm::Array<f64>) -> Dm::Array<f64> {
     if from == to {

@@ -304,6 +304,9 @@ pub struct Summary {
     pub chart_switches: usize,
     /// What the user should know about the run (see [`Warning`]), in the order first seen.
     pub warnings: Vec<Warning>,
+    /// With [`crate::Method::sensitivities`]: the tangent map d(q_N, p_N)/d(q_0, p_0), 2n rows of 2n
+    /// entries, q then p in the order of [`Summary::coordinates`] (main chart).
+    pub sensitivity: Option<Vec<Vec<f64>>>,
 }
 
 /// A trajectory kept in memory: the reported rows and the summary.

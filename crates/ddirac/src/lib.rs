@@ -70,6 +70,7 @@ pub mod stack;
 mod stepper;
 mod system;
 pub mod systems;
+pub mod tangent_map;
 
 pub use check::{check, ChartFinding, CheckReport, Finding, CONSTRAINT_TOLERANCE, ROUND_TRIP_TOLERANCE};
 pub use composition::Composition;

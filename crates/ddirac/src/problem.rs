@@ -212,6 +212,9 @@ pub struct Method {
     /// Switch between the charts of the system's atlas where the current one degrades (paper §6;
     /// [`crate::atlas`]); without an atlas, or with `false`, every step is taken in the main chart.
     pub atlas: bool,
+    /// Propagate the tangent map d(q_k, p_k)/d(q_0, p_0) through every step
+    /// ([`crate::Summary::sensitivity`]; [`crate::tangent_map`]).
+    pub sensitivities: bool,
 }
 
 impl Default for Method {
@@ -227,6 +230,7 @@ impl Default for Method {
             energy_jump: EnergyJump::default(),
             composition: Composition::Basic,
             atlas: true,
+            sensitivities: false,
         }
     }
 }

@@ -23,7 +23,8 @@
 //!   one, per step, with dual numbers and compiled derivatives ([`dimension`]);
 //! - `ensemble`: members on 2 threads against 1, 10³ short members against the sum of their steps,
 //!   and the peak memory of `ddirac ensemble` against its output ([`ensemble`]);
-//! - `rigid`: the free rigid body's step on SO(3) against a hand-written LGVI ([`rigid`]).
+//! - `rigid`: the free rigid body's step on SO(3) against a hand-written LGVI ([`rigid`]);
+//! - `sensitivities`: a step with its tangent map against the plain step ([`sensitivities`]).
 //!
 //! `--json PATH` writes every measurement, round by round, through a temporary file renamed into
 //! place when complete.
@@ -83,6 +84,7 @@ mod reduction;
 mod rigid;
 mod rigid_race;
 mod scaling;
+mod sensitivities;
 mod work_precision;
 
 use std::hint::black_box;
@@ -142,11 +144,13 @@ pub enum Group {
     Ensemble,
     /// The rigid body's step on SO(3) against a hand-written LGVI.
     Rigid,
+    /// A step with its tangent map against the plain step.
+    Sensitivities,
 }
 
 impl Group {
     /// Every group, in the order they run.
-    const ALL: [Group; 9] = [
+    const ALL: [Group; 10] = [
         Group::Reduction,
         Group::ChargedParticle,
         Group::WorkPrecision,
@@ -156,6 +160,7 @@ impl Group {
         Group::Dimension,
         Group::Ensemble,
         Group::Rigid,
+        Group::Sensitivities,
     ];
 
     /// The name on the command line and in the JSON output.
@@ -170,6 +175,7 @@ impl Group {
             Group::Dimension => "dimension",
             Group::Ensemble => "ensemble",
             Group::Rigid => "rigid",
+            Group::Sensitivities => "sensitivities",
         }
     }
 
@@ -184,6 +190,7 @@ impl Group {
             Group::Dimension => dimension::run(settings),
             Group::Ensemble => ensemble::run(settings),
             Group::Rigid => rigid::run(settings),
+            Group::Sensitivities => sensitivities::run(settings),
         }
     }
 }

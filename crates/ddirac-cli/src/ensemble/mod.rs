@@ -362,6 +362,14 @@ impl Ensemble {
     /// As [`Ensemble::load`], for the spec text `text` of the file `path`.
     pub fn from_text(path: &Path, text: String, set: &[String], from: MembersFrom) -> Result<Self, CliError> {
         let base = Base::load(path, text.clone(), set)?;
+        if matches!(&base, Base::Coordinates(l) if l.plan.method.sensitivities) {
+            return Err(CliError::Members {
+                what: format!("the spec `{}`", path.display()),
+                why: "an ensemble writes no tangent maps: `method.sensitivities = true` is for `ddirac run` (and \
+                      Python's `simulate`); remove it here"
+                    .into(),
+            });
+        }
         let variables = base.variables();
         let (source, table) = base.table();
         let members = match from {

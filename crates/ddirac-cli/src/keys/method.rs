@@ -17,6 +17,7 @@
 //! | `order` | 2, 4, 6, 8 | 2 |
 //! | `composition` | `suzuki` (4), `kahan-li` (6, 8), `triple-jump` (4, 6, 8) | by the order |
 //! | `atlas` | switch charts of the system's atlas | true |
+//! | `sensitivities` | propagate the tangent map d(q_N, p_N)/d(q_0, p_0) | false |
 //!
 //! The defaults are those of [`ddirac::Method::default`].
 
@@ -58,6 +59,8 @@ pub struct MethodKeys {
     pub composition: Option<String>,
     /// `atlas`.
     pub atlas: Option<bool>,
+    /// `sensitivities`.
+    pub sensitivities: Option<bool>,
 }
 
 impl MethodKeys {
@@ -79,6 +82,7 @@ impl MethodKeys {
             order: Some(i64::from(method.composition.order())),
             composition: Some(method.composition.name().to_owned()),
             atlas: Some(method.atlas),
+            sensitivities: Some(method.sensitivities),
         }
     }
 }
@@ -118,11 +122,13 @@ pub enum MethodKey {
     Composition,
     /// `atlas`.
     Atlas,
+    /// `sensitivities`.
+    Sensitivities,
 }
 
 impl MethodKey {
     /// Every key, in the order of the table above.
-    pub const ALL: [MethodKey; 14] = [
+    pub const ALL: [MethodKey; 15] = [
         MethodKey::Rule,
         MethodKey::Variant,
         MethodKey::Reduced,
@@ -137,6 +143,7 @@ impl MethodKey {
         MethodKey::Order,
         MethodKey::Composition,
         MethodKey::Atlas,
+        MethodKey::Sensitivities,
     ];
 
     /// The key's name (`tolerance`); a part of the connection is `connection`.
@@ -156,6 +163,7 @@ impl MethodKey {
             MethodKey::Order => "order",
             MethodKey::Composition => "composition",
             MethodKey::Atlas => "atlas",
+            MethodKey::Sensitivities => "sensitivities",
         }
     }
 
@@ -265,6 +273,7 @@ pub fn method(
         energy_jump: EnergyJump { threshold, action },
         composition,
         atlas: keys.atlas.unwrap_or(defaults.atlas),
+        sensitivities: keys.sensitivities.unwrap_or(defaults.sensitivities),
     })
 }
 

@@ -94,6 +94,11 @@ pub fn validate(source: &SpecSource, spec: &Spec) -> Result<RigidPlan, Box<SpecE
             .error(Some(a.span()), "a rigid body takes no `method.atlas`", "no atlas here")
             .with_help("the attitude is advanced on SO(3) itself, in no chart: there are no charts to switch"));
     }
+    if let Some(s) = spec.method.sensitivities.as_ref().filter(|s| *s.get_ref()) {
+        return Err(source
+            .error(Some(s.span()), "a rigid body has no tangent map yet", "not for a rigid body")
+            .with_help("`method.sensitivities` is available for systems in coordinates; remove it for a rigid body"));
+    }
     let method = spec::method_of(source, spec, &[], &mut Spans::default())?;
     let (step, steps) = spec::grid(source, &spec.time)?;
     let shape = body.shape();

@@ -265,6 +265,9 @@ pub struct MethodSpec {
     /// Switch between the charts of the system's atlas where the current one degrades (default
     /// true; without an atlas there is nothing to switch).
     pub atlas: Option<Spanned<bool>>,
+    /// Propagate the tangent map d(q_N, p_N)/d(q_0, p_0) through every step (default false):
+    /// summary.json's `sensitivity.state`.
+    pub sensitivities: Option<Spanned<bool>>,
 }
 
 /// `[time]`: any two of step, steps, duration (all three if consistent).

@@ -242,6 +242,7 @@ pub(crate) fn method(
         order: m.order.as_ref().map(|o| *o.get_ref()),
         composition: text(&m.composition),
         atlas: value(&m.atlas),
+        sensitivities: value(&m.sensitivities),
     };
     let method = keys::method::method(&keys, coordinates, Spelling::Spec)
         .map_err(|error| source.refusal(error, |key| method_span(m, key)))?;
@@ -276,5 +277,6 @@ fn method_span(m: &MethodSpec, key: MethodKey) -> Option<Range<usize>> {
         MethodKey::Order => span(&m.order),
         MethodKey::Composition => span(&m.composition),
         MethodKey::Atlas => span(&m.atlas),
+        MethodKey::Sensitivities => span(&m.sensitivities),
     }
 }

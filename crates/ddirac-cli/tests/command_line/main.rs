@@ -60,6 +60,7 @@ mod rigid_body;
 mod rigid_body_figures;
 mod rigid_ensemble;
 mod rigid_examples;
+mod sensitivities;
 mod slurm_example;
 mod specs;
 mod undetermined_motion_is_refused;

@@ -326,7 +326,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         // energy of the last step (H is a function on T*Q, and each chart's discrete energy follows it
         // to O(h²)), so that a jump or a drift is measured against the run before the switch.
         let from = &self.chart().progress;
-        let (record, monitor, last_energy) = (from.record.clone(), from.monitor.clone(), from.last_energy);
+        let (mut record, monitor, last_energy) = (from.record.clone(), from.monitor.clone(), from.last_energy);
+        if let Some(tangent) = &mut record.tangent {
+            *tangent = self.switch_map(self.current, to, &q, &p, &q_to) * &*tangent;
+        }
         let stepper = self.charts[to].as_mut().expect("prepared");
         stepper.restart(&StateIn::new(k, q_to, p_to))?;
         let progress = &mut stepper.progress;
@@ -338,6 +341,21 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         self.current = to;
         self.switches += 1;
         Ok(())
+    }
+
+    /// The Jacobian of the switch from chart `from` to chart `to` at (q, p) of chart `from`, landing
+    /// at `q_to` ([`crate::tangent_map::switch`]); NaN where the maps have none.
+    fn switch_map(
+        &self,
+        from: usize,
+        to: usize,
+        q: &Dm::Array<f64>,
+        p: &Dm::Array<f64>,
+        q_to: &Dm::Array<f64>,
+    ) -> nalgebra::DMatrix<f64> {
+        let n = 2 * self.dim.n();
+        crate::tangent_map::switch(&self.system, (from, to), q, p, q_to)
+            .unwrap_or_else(|| nalgebra::DMatrix::from_element(n, n, f64::NAN))
     }
 
     /// An error unless the maps of chart `chart` are inverse at its point `q` (to
@@ -548,6 +566,14 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         let mut summary = self.chart_mut().summary()?;
         summary.chart_switches = self.switches;
         if self.current != 0 {
+            let (q, p) = self.chart_state();
+            let tangent = &self.chart().progress.record.tangent;
+            if let (Some(tangent), Some((q_main, _))) =
+                (tangent, atlas::transition(&self.system, self.current, 0, &q, &p))
+            {
+                let to_main = self.switch_map(self.current, 0, &q, &p, &q_main) * tangent;
+                summary.sensitivity = Some(super::rows(&to_main));
+            }
             let state = self.state();
             summary.coordinates = self.system.coordinates().as_ref().iter().map(|c| c.name.clone()).collect();
             let final_q = if self.wrap_angles { wrapped(&self.kinds, state.q.clone()) } else { state.q.clone() };

@@ -81,6 +81,9 @@ struct Equipped<Sc, Dm: Dim> {
     closed_form: bool,
     /// Whether the derivatives serve other problems unchanged ([`Stepper::renew`]).
     renewable: bool,
+    /// With [`Method::sensitivities`]: how the tangent map takes the generating function's Hessian
+    /// (compiled when the derivatives are).
+    tangent: Option<crate::tangent_map::StepTangent>,
 }
 
 /// `$body` with `$e` bound to the run's [`Stages`], whichever scheme they are of.
@@ -448,6 +451,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
             reference_error,
             chart_switches: 0,
             warnings: record.warnings.0,
+            sensitivity: record.tangent.as_ref().map(rows),
         })
     }
 }
@@ -493,14 +497,25 @@ impl<Sc: Scheme<Dm>, Dm: Dim> Equipped<Sc, Dm> {
             .map_err(Error::NotCompiled)?;
         let (equations, prepared) = (scheme.equations(), momenta);
         let renewable = derivatives.independent_of_first_step(method.differentiation, steps);
-        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true, renewable }, path))
+        let tangent = method.sensitivities.then(|| {
+            let hessian = match &derivatives {
+                StepDerivatives::Compiled { .. } => {
+                    let z = scheme.unknowns(&dq);
+                    crate::tangent_map::Hessian::compiled(&scheme, &base, &dim.array(|i| z[i]))
+                }
+                StepDerivatives::Dual => crate::tangent_map::Hessian::Dual,
+            };
+            crate::tangent_map::StepTangent::new(&scheme, dim, hessian)
+        });
+        Ok((Self { equations, scheme, derivatives, prepared, closed_form: true, renewable, tangent }, path))
     }
 
     /// The scheme of another sub-step with `derivatives` shared from the scheme `other` prepared
     /// ([`StepDerivatives::for_step`]: the same programs with the other sub-step's h).
-    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<Dm>, first: &FirstStep<Dm>) -> Self {
+    fn sharing(other: &Self, scheme: Sc, derivatives: StepDerivatives<Dm>, first: &FirstStep<Dm>, step: f64) -> Self {
         let (equations, prepared) = (scheme.equations(), scheme.momenta_from_p(&first.p));
-        Self { equations, scheme, derivatives, prepared, closed_form: true, renewable: other.renewable }
+        let tangent = other.tangent.as_ref().map(|t| t.for_step(step));
+        Self { equations, scheme, derivatives, prepared, closed_form: true, renewable: other.renewable, tangent }
     }
 
     /// Whether the closed-form step serves a state with scheme momenta `momenta`: the momenta it holds
@@ -509,6 +524,11 @@ impl<Sc: Scheme<Dm>, Dm: Dim> Equipped<Sc, Dm> {
         (0..momenta.as_ref().len())
             .all(|i| self.equations.advances[i] || momenta[i].to_bits() == self.prepared[i].to_bits())
     }
+}
+
+/// The rows of a matrix.
+pub(crate) fn rows(m: &nalgebra::DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|row| row.iter().copied().collect()).collect()
 }
 
 /// The distance √Σ (exact − q)² over the coordinates with an exact value, if any has one.

@@ -64,6 +64,9 @@ pub(super) struct Record<Dm: Dim> {
     pub(super) warnings: Warnings,
     /// What the steps resolve, for the test of the Newton tolerance against it.
     pub(super) resolution: Resolution<Dm>,
+    /// With [`Method::sensitivities`]: d(q_k, p_k)/d(q_k0, p_k0) in the current chart's coordinates
+    /// ([`crate::tangent_map`]); NaN from a step without a tangent map on.
+    pub(super) tangent: Option<nalgebra::DMatrix<f64>>,
 }
 
 /// `clone_from` reuses the vectors' memory: the stepper of an atlas saves a step's progress into
@@ -108,6 +111,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
             newton: self.newton,
             warnings: self.warnings.clone(),
             resolution: self.resolution.clone(),
+            tangent: self.tangent.clone(),
         }
     }
 
@@ -121,6 +125,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
         self.newton = source.newton;
         self.warnings.0.clone_from(&source.warnings.0);
         self.resolution.clone_from(&source.resolution);
+        self.tangent.clone_from(&source.tangent);
     }
 }
 
@@ -198,6 +203,7 @@ impl<Dm: Dim> Progress<Dm> {
             newton: NewtonSummary::default(),
             warnings: Warnings(warnings),
             resolution: Resolution::new(dim),
+            tangent: method.sensitivities.then(|| nalgebra::DMatrix::identity(2 * dim.n(), 2 * dim.n())),
         };
         record.drift(split, &momenta, &p);
         Self {
@@ -304,7 +310,9 @@ impl<Dm: Dim> Progress<Dm> {
         }
         let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
         let (momenta_next, discrete_energy) = (s.momenta_next, s.value);
-        let taken = Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back: false, z, composed: None };
+        let tangent = sub_step_tangent(context, e, self.config.base(), &z, None);
+        let taken =
+            Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back: false, z, composed: None, tangent };
         Some(self.commit(taken, context))
     }
 
@@ -425,7 +433,8 @@ impl<Dm: Dim> Progress<Dm> {
             let pv = pv_sum::<Dm>(&self.p_now, &p_next, &dq);
             (pv, p_next)
         });
-        Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None })
+        let tangent = sub_step_tangent(context, e, self.config.base(), &z, None);
+        Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None, tangent })
     }
 
     /// Solves step k as the sub-steps of a composition, each from where the one before ended, with
@@ -446,6 +455,7 @@ impl<Dm: Dim> Progress<Dm> {
         let mut stats = newton::NewtonStats::default();
         let mut fell_back = false;
         let mut zs = Vec::with_capacity(stages.sequence.len());
+        let mut tangent = None;
         let memories = match memory {
             Some(memory) => memory,
             None => &mut self.stages[..],
@@ -471,6 +481,7 @@ impl<Dm: Dim> Progress<Dm> {
             stats.residual = stats.residual.max(solved.stats.residual);
             fell_back |= solved.fell_back;
             momenta = solved.momenta_next;
+            tangent = sub_step_tangent(context, e, config.base(), &solved.z, tangent);
             config.advance(&dq);
             dq_step.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(s, d)| *s += d);
             zs.push(solved.z);
@@ -486,6 +497,7 @@ impl<Dm: Dim> Progress<Dm> {
             fell_back,
             z,
             composed: Some((config, zs)),
+            tangent,
         })
     }
 
@@ -495,7 +507,10 @@ impl<Dm: Dim> Progress<Dm> {
         let (method, h, split) = (&context.method, context.h, &context.split);
         let (k, action) = (self.k, method.energy_jump.action);
         let t = k as f64 * h;
-        let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed } = taken;
+        let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed, tangent } = taken;
+        if let (Some(step), Some(run)) = (tangent, &mut self.record.tangent) {
+            *run = step * &*run;
+        }
         if let Some(unresolved) = self.angles.watch(&dq) {
             if let Some(warning) = self.fast_angle(context, &dq, unresolved) {
                 self.record.warnings.push(warning);
@@ -669,6 +684,27 @@ struct Taken<Dm: Dim> {
     fell_back: bool,
     z: Dm::Vector,
     composed: Option<(ConfigurationIn<Dm>, Vec<Dm::Vector>)>,
+    /// With [`Method::sensitivities`]: the step's tangent map in (q, p) (NaN where a sub-step has none).
+    tangent: Option<nalgebra::DMatrix<f64>>,
+}
+
+/// With [`Method::sensitivities`], the tangent map of a sub-step of `e` from chart base `q`
+/// solved by `z`, after the tangent map `before` of the step's earlier sub-steps (NaN where a
+/// sub-step has none); `None` otherwise.
+fn sub_step_tangent<S, Sc: Scheme<Dm>, Dm: Dim>(
+    context: &Context<S, Dm>,
+    e: &Equipped<Sc, Dm>,
+    q: &Dm::Array<f64>,
+    z: &Dm::Vector,
+    before: Option<nalgebra::DMatrix<f64>>,
+) -> Option<nalgebra::DMatrix<f64>> {
+    let tangent = e.tangent.as_ref()?;
+    let n = context.dim.n();
+    let map = tangent.step(&e.scheme, q, z).unwrap_or_else(|| nalgebra::DMatrix::from_element(2 * n, 2 * n, f64::NAN));
+    Some(match before {
+        Some(before) => map * before,
+        None => map,
+    })
 }
 
 /// The largest of `start` (not NaN) and the |v| of `values`, NaN entries skipped: the fold of

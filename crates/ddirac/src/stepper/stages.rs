@@ -79,7 +79,7 @@ impl<Sc: Scheme<Dm>, Dm: Dim> Stages<Sc, Dm> {
             let shares = method.differentiation == Differentiation::Compiled || count(i) >= count(0);
             let shared = distinct.first().filter(|_| shares).and_then(|e| e.derivatives.for_step(step));
             let equipped = match shared {
-                Some(derivatives) => Equipped::sharing(&distinct[0], scheme, derivatives, first),
+                Some(derivatives) => Equipped::sharing(&distinct[0], scheme, derivatives, first, step),
                 None => {
                     let (equipped, prepared) = Equipped::new(scheme, method, steps * count(i), first, g)?;
                     path.get_or_insert(prepared);

@@ -61,4 +61,5 @@ mod reduction_consistency;
 mod rigid_body;
 mod rigid_principal_axes;
 mod stepper;
+mod tangent_map;
 mod undetermined_motion_is_refused;
