@@ -33,8 +33,8 @@ from .run import Run, check, simulate
 from .rigid import RigidBody, RigidRun
 from .run_warnings import (
     EnergyDriftWarning, EnergyJumpWarning, InvarianceUndecidedWarning, LooseToleranceWarning,
-    NewtonFallbackWarning, NoEnergyWarning, NotInvariantWarning, RunWarning, SingularChartWarning,
-    SubdividedWarning, UnderResolvedWarning,
+    NewtonFallbackWarning, NoEnergyWarning, NotInvariantWarning, RunWarning, SensitivityLostWarning,
+    SingularChartWarning, SubdividedWarning, UnderResolvedWarning,
 )
 from .spec import Spec, load
 
@@ -43,6 +43,6 @@ __all__ = [
     "RigidBody", "RigidRun", "RelativeEquilibrium", "relative_equilibria",
     "Spec", "SpecError", "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
     "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
-    "LooseToleranceWarning", "NewtonFallbackWarning", "NoEnergyWarning", "NotInvariantWarning", "SingularChartWarning",
-    "SubdividedWarning", "UnderResolvedWarning",
+    "LooseToleranceWarning", "NewtonFallbackWarning", "NoEnergyWarning", "NotInvariantWarning", "SensitivityLostWarning",
+    "SingularChartWarning", "SubdividedWarning", "UnderResolvedWarning",
 ]

@@ -93,6 +93,10 @@ class NoEnergyWarning(RunWarning):
     the energy is not reported (NaN); the motion itself is computed."""
 
 
+class SensitivityLostWarning(RunWarning):
+    """``sensitivity_lost``: with ``sensitivities=True``, the tangent map could not be carried through a
+    step (its linearized equations are singular there) or a chart switch; ``run.sensitivity`` is not finite."""
+
 
 #: The class of each kind, by the name ``summary.json`` gives it.
 KINDS: dict[str, type[RunWarning]] = {
@@ -106,6 +110,7 @@ KINDS: dict[str, type[RunWarning]] = {
     "subdivided": SubdividedWarning,
     "loose_tolerance": LooseToleranceWarning,
     "no_energy": NoEnergyWarning,
+    "sensitivity_lost": SensitivityLostWarning,
 }
 
 # The package's directory: frames of files in it are skipped, so that a warning points at the user's call.

@@ -44,7 +44,8 @@ def test_every_kind_has_its_class_exported_under_run_warning():
         assert issubclass(cls, ddirac.RunWarning) and cls is not ddirac.RunWarning
     assert "RunWarning" in ddirac.__all__
     assert set(KINDS) == {"not_invariant", "invariance_undecided", "energy_jump", "newton_fallback", "under_resolved",
-                          "singular_chart", "energy_drift", "subdivided", "loose_tolerance", "no_energy"}
+                          "singular_chart", "energy_drift", "subdivided", "loose_tolerance", "no_energy",
+                          "sensitivity_lost"}
 
 
 def test_kepler_falling_straight_in_warns_in_python_at_the_callers_line():

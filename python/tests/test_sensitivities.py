@@ -56,3 +56,15 @@ def test_an_ensemble_is_refused(tmp_path):
                        overrides={"method.sensitivities": True, "time.duration": 0.1})
     with pytest.raises(ddirac.Error, match="sensitivities"):
         ddirac.ensemble(spec, {"initial.q.theta": [0.5, 0.6]})
+
+
+def test_a_tangent_map_that_overflows_warns_sensitivity_lost():
+    # A particle resting on a saddle, L = ½ẋ² + 50x²: the motion stays at x = 0, the tangent map grows as
+    # μ^N, μ = (1 + hλ/2)/(1 − hλ/2) with λ = 10, and passes 1.8e308 near t = 70.8.
+    saddle = ddirac.System(lagrangian="0.5*x_dot^2 + 50*x^2", shape=["x"])
+    with pytest.warns(ddirac.SensitivityLostWarning, match="overflowed"):
+        run = ddirac.simulate(saddle, q0=[0.0], v0=[0.0], step=0.01, steps=10000, sensitivities=True)
+    assert run.q[-1][0] == 0.0
+    assert not np.isfinite(run.sensitivity).any()
+    lost = [w for w in run.summary["warnings"] if w["kind"] == "sensitivity_lost"]
+    assert len(lost) == 1 and 70.0 < lost[0]["t"] < 71.5

@@ -9,27 +9,32 @@
 //! retraction-compatible chart of its own, so a step in it is the paper's scheme in that chart:
 //! symplectic, and equivariant where the group translates the chart's group coordinates.
 //!
-//! Before each step, the run chooses the chart for it at the step's predicted midpoint
-//! ([`SWITCH_BELOW`]) and, if it is another, moves there: q' = ψ_b(φ_a(q)) and the momenta by the
-//! cotangent lift p' = Dτ(q')ᵀ p of the transition τ = ψ_a ∘ φ_b ([`transition`]), a symplectic map.
+//! The charts' discrete Lagrangians are glued into one on Q × Q ([`crate::blend`]). Before each step
+//! the run chooses the chart to solve it in — the one chart with weight at the step's ends, else the
+//! best at its predicted midpoint ([`SWITCH_BELOW`]) — and, if it is another, moves there:
+//! q' = ψ_b(φ_a(q)) and the momenta by the cotangent lift p' = Dτ(q')ᵀ p of the transition
+//! τ = ψ_a ∘ φ_b ([`transition`]), a symplectic map.
 //! Where the group translates the group coordinates of both charts (φ equivariant), Dτ maps the group
 //! direction to itself exactly, so the momentum map J = p_g is carried over exactly.
 
 pub use crate::chart::nearest_turns;
 use num_dual::Dual;
 
-use crate::dim::Dim;
+use crate::blend::{partition, rise};
+use crate::chart::nearest_turns as turns;
+use crate::dim::{Dim, Entry};
+use crate::mechanics::discrete_lagrangian::by_rule;
+use crate::mechanics::discrete_lagrangian::Rule;
 use crate::mechanics::lagrangian::{Lagrangian, SystemIn};
-use crate::{Coordinate, Scalar};
+use crate::{Coordinate, CoordinateKind, Scalar};
 
-/// A step is taken in the main chart where the main chart's measure ([`System::chart_quality`](crate::System::chart_quality)) at
-/// the step's midpoint is at least this (1/√2: 45° from the pole of spherical coordinates, where the
+/// A step whose ends are where charts overlap ([`crate::blend`]) is solved in the main chart where the
+/// main chart's measure ([`System::chart_quality`](crate::System::chart_quality)) at the step's
+/// predicted midpoint is at least this (1/√2: 45° from the pole of spherical coordinates, where the
 /// polar caps' measure is as large); elsewhere in the best chart with the main chart's group
-/// coordinates if its measure is at least this, else in the best chart. The choice depends on the
-/// midpoint alone, so a reversed step makes it alike and switches leave the run reversible: with
-/// hysteresis (leaving at one measure, returning at another) a periodic motion would switch at
-/// points that are not mirror images, and its energy would drift by the difference of the charts'
-/// modified energies at each switch.
+/// coordinates if its measure is at least this, else in the best chart. The glued discrete
+/// Lagrangian is the same function in each, so the choice is one of coordinates (of the conditioning
+/// of the step's equations), not of the method.
 pub const SWITCH_BELOW: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 /// A system seen in chart `chart` of its atlas (0: the main chart): the chart's coordinates, and the
@@ -51,13 +56,25 @@ pub struct InChart<S, Dm: Dim> {
     system: S,
     chart: usize,
     coordinates: Dm::Array<Coordinate>,
+    /// The atlas glued ([`crate::blend`]): the discrete Lagrangian is then the glued one.
+    glue: Option<std::sync::Arc<Glue<S, Dm>>>,
 }
 
 impl<S: SystemIn<Dm>, Dm: Dim> InChart<S, Dm> {
     /// `system` in chart `chart` (0 for the main chart). Panics for a chart the system does not have.
     pub fn new(system: S, chart: usize) -> Self {
         let coordinates = if chart == 0 { system.coordinates() } else { system.charts().swap_remove(chart - 1).1 };
-        Self { system, chart, coordinates }
+        Self { system, chart, coordinates, glue: None }
+    }
+
+    /// `system` in chart `chart` with the discrete Lagrangian of its atlas glued ([`crate::blend`]):
+    /// the same function of two points of Q in every chart.
+    pub(crate) fn glued(system: S, chart: usize) -> Self
+    where
+        S: Clone,
+    {
+        let glue = Some(std::sync::Arc::new(Glue::new(&system)));
+        Self { glue, ..Self::new(system, chart) }
     }
 
     /// The chart's index (0: the main chart).
@@ -86,6 +103,22 @@ impl<S: SystemIn<Dm>, Dm: Dim> Lagrangian<Dm> for InChart<S, Dm> {
         let image = self.system.chart_to_main(self.chart, &lifted);
         self.system.lagrangian(&dim.array(|i| image[i].re), &dim.array(|i| image[i].eps))
     }
+
+    #[inline(always)]
+    fn discrete<D, B>(
+        &self,
+        rule: Rule,
+        step: f64,
+        base: &Dm::Array<B>,
+        d0: &Dm::Array<D>,
+        d1: &Dm::Array<D>,
+    ) -> Option<D>
+    where
+        D: Scalar + std::ops::Add<B, Output = D>,
+        B: Entry + Copy,
+    {
+        self.glue.as_ref().map(|glue| glue.discrete(self.chart, rule, step, base, d0, d1))
+    }
 }
 
 impl<S: SystemIn<Dm>, Dm: Dim> SystemIn<Dm> for InChart<S, Dm> {
@@ -102,7 +135,7 @@ impl<S: SystemIn<Dm>, Dm: Dim> SystemIn<Dm> for InChart<S, Dm> {
         (self.chart == 0).then(|| self.system.exact_solution(q0, p0, t)).flatten()
     }
 
-    fn chart_quality(&self, _chart: usize, q: &Dm::Array<f64>) -> f64 {
+    fn chart_quality<D: Scalar>(&self, _chart: usize, q: &Dm::Array<D>) -> D {
         self.system.chart_quality(self.chart, q)
     }
 }
@@ -198,4 +231,154 @@ pub fn transition<S: SystemIn<Dm>, Dm: Dim>(
 /// The coordinates of each chart of `system`: the main chart (index 0) and the others.
 pub fn all_charts<S: SystemIn<Dm>, Dm: Dim>(system: &S) -> Vec<Dm::Array<Coordinate>> {
     std::iter::once(system.coordinates()).chain(system.charts().into_iter().map(|(_, c)| c)).collect()
+}
+
+/// How far (relative) a point may come back from a chart's maps there and back and still count as in
+/// the chart.
+pub(crate) const DOMAIN_TOLERANCE: f64 = 1e-6;
+
+/// The measure of chart `chart` at the main-chart point `main` if the point is in the chart: its maps
+/// take it there and back (a chart's ψ may be defined beyond its domain, as the projection of a
+/// hemisphere is on the other one) and the measure is finite.
+pub(crate) fn measure_at<S: SystemIn<Dm>, Dm: Dim>(
+    system: &S,
+    kinds: &Dm::Array<CoordinateKind>,
+    chart: usize,
+    main: &Dm::Array<f64>,
+) -> Option<f64> {
+    if chart == 0 {
+        return Some(system.chart_quality(0, main)).filter(|q| q.is_finite());
+    }
+    let there = point(system, 0, chart, main);
+    let back = system.nearest_in_main(point(system, chart, 0, &there), main, kinds);
+    let apart = round_trip_distance(main.as_ref(), back.as_ref());
+    let measure = system.chart_quality(chart, &there);
+    (apart <= DOMAIN_TOLERANCE && measure.is_finite()).then_some(measure)
+}
+
+/// The charts with weight at the main-chart point `main`, with their weights (summing to one), in
+/// the charts' order; empty where no chart's measure reaches [`BLEND_FROM`].
+pub(crate) fn weights_at<S: SystemIn<Dm>, Dm: Dim>(
+    system: &S,
+    kinds: &Dm::Array<CoordinateKind>,
+    charts: usize,
+    main: &Dm::Array<f64>,
+) -> Vec<(usize, f64)> {
+    let rises = (0..charts).filter_map(|c| measure_at(system, kinds, c, main).map(|m| (c, rise(m))));
+    partition(rises)
+}
+
+/// The chart that alone has weight at the main-chart point `main`, if one does.
+pub(crate) fn sole_chart<S: SystemIn<Dm>, Dm: Dim>(
+    system: &S,
+    kinds: &Dm::Array<CoordinateKind>,
+    charts: usize,
+    main: &Dm::Array<f64>,
+) -> Option<usize> {
+    match weights_at(system, kinds, charts, main).as_slice() {
+        [(chart, _)] => Some(*chart),
+        _ => None,
+    }
+}
+
+/// The atlas glued: the Lagrangian of each chart, and the kinds of each chart's coordinates.
+#[derive(Debug, Clone)]
+pub(crate) struct Glue<S, Dm: Dim> {
+    charts: Vec<InChart<S, Dm>>,
+    kinds: Vec<Dm::Array<CoordinateKind>>,
+}
+
+impl<S: SystemIn<Dm> + Clone, Dm: Dim> Glue<S, Dm> {
+    /// The charts of `system`'s atlas.
+    pub fn new(system: &S) -> Self {
+        let kinds = all_charts(system)
+            .iter()
+            .map(|coordinates| {
+                let dim = Dm::of(coordinates);
+                dim.array(|i| coordinates[i].kind)
+            })
+            .collect::<Vec<_>>();
+        let charts = (0..kinds.len()).map(|c| InChart::new(system.clone(), c)).collect();
+        Self { charts, kinds }
+    }
+}
+
+impl<S: SystemIn<Dm>, Dm: Dim> Glue<S, Dm> {
+    fn system(&self) -> &S {
+        self.charts[0].system()
+    }
+
+    /// The weights at the point `x` of chart `chart` with the point in each chart that has weight:
+    /// all to `chart` where no chart's measure reaches [`BLEND_FROM`].
+    fn weights<D: Scalar>(&self, chart: usize, x: &Dm::Array<D>) -> Vec<(usize, D, Dm::Array<D>)> {
+        let system = self.system();
+        let dim = Dm::of(x);
+        let main = point(system, chart, 0, &dim.array(|i| x[i].re()));
+        let mut points = Vec::new();
+        let rises = (0..self.charts.len()).filter_map(|c| {
+            measure_at(system, &self.kinds[0], c, &main)?;
+            let there = map(system, chart, c, x);
+            let sigma = rise(system.chart_quality(c, &there));
+            points.push((c, there));
+            Some((c, sigma))
+        });
+        let weights = partition(rises);
+        if weights.is_empty() {
+            return vec![(chart, D::one(), x.clone())];
+        }
+        weights
+            .into_iter()
+            .map(|(c, w)| {
+                let at = points.iter().position(|(p, _)| *p == c).expect("a point for each weighted chart");
+                (c, w, points.swap_remove(at).1)
+            })
+            .collect()
+    }
+
+    /// The glued L_d at the points base + d0, base + d1 of chart `chart`.
+    pub fn discrete<D, B>(
+        &self,
+        chart: usize,
+        rule: Rule,
+        step: f64,
+        base: &Dm::Array<B>,
+        d0: &Dm::Array<D>,
+        d1: &Dm::Array<D>,
+    ) -> D
+    where
+        D: Scalar + std::ops::Add<B, Output = D>,
+        B: Entry + Copy,
+    {
+        let dim = Dm::of(d0);
+        let x0 = dim.array(|i| d0[i] + base[i]);
+        let x1 = dim.array(|i| d1[i] + base[i]);
+        let (at0, at1) = (self.weights(chart, &x0), self.weights(chart, &x1));
+        let mut used: Vec<usize> = at0.iter().chain(&at1).map(|(c, _, _)| *c).collect();
+        used.sort_unstable();
+        used.dedup();
+        let zero = dim.array(|_| 0.0);
+        let mut total = D::zero();
+        for c in used {
+            let find = |at: &[(usize, D, Dm::Array<D>)], x: &Dm::Array<D>| match at.iter().find(|(p, _, _)| *p == c) {
+                Some((_, w, there)) => (*w, there.clone()),
+                None => (D::zero(), map(self.system(), chart, c, x)),
+            };
+            let ((w0, y0), (w1, mut y1)) = (find(&at0, &x0), find(&at1, &x1));
+            // The second point on the branch of the chart's angles nearest the first: the shift is a
+            // constant, a number of whole turns.
+            let (re0, re1) = (dim.array(|i| y0[i].re()), dim.array(|i| y1[i].re()));
+            let near = if c == 0 {
+                self.system().nearest_in_main(re1.clone(), &re0, &self.kinds[0])
+            } else {
+                turns(re1.clone(), &re0, &self.kinds[c])
+            };
+            for i in 0..dim.n() {
+                y1[i] += near[i] - re1[i];
+            }
+            let lagrangian = &self.charts[c];
+            let term = by_rule::<Dm, D, f64>(rule, step, &zero, &y0, &y1, |q, v| lagrangian.lagrangian(q, v));
+            total += (w0 + w1) * 0.5 * term;
+        }
+        total
+    }
 }

@@ -130,3 +130,18 @@ pub fn nearest_turns<A: AsMut<[f64]>>(mut q: A, near: &impl AsRef<[f64]>, kinds:
     }
     q
 }
+
+/// √x where x > 0, else 0 (with zero derivatives): the distance to a chart's edge, such as
+/// √(1 − x² − y²) for the horizontal coordinates of a hemisphere, on any scalar.
+///
+/// ```
+/// assert_eq!(ddirac::chart::root_or_zero(0.25), 0.5);
+/// assert_eq!(ddirac::chart::root_or_zero(-0.25), 0.0);
+/// ```
+pub fn root_or_zero<D: num_dual::DualNum<Primitive = f64> + Copy>(x: D) -> D {
+    if x.re() > 0.0 {
+        x.sqrt()
+    } else {
+        D::zero()
+    }
+}

@@ -189,12 +189,16 @@ pub enum WarningKind {
     /// The Legendre transform cannot be inverted at the initial data (a degenerate Lagrangian of a
     /// rigid system): the energy is not reported.
     NoEnergy,
+    /// With [`crate::Method::sensitivities`]: the tangent map could not be carried through a step (the
+    /// mixed Hessian of its generating function is singular or not finite there) or a chart switch
+    /// (the maps have no derivative there): the run's tangent map is not finite from that step on.
+    SensitivityLost,
 }
 
 impl WarningKind {
     /// The name written in `summary.json`: `not_invariant`, `invariance_undecided`, `energy_jump`,
     /// `newton_fallback`, `under_resolved`, `singular_chart`, `energy_drift`, `subdivided`,
-    /// `loose_tolerance`, `no_energy`.
+    /// `loose_tolerance`, `no_energy`, `sensitivity_lost`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::NotInvariant => "not_invariant",
@@ -207,6 +211,7 @@ impl WarningKind {
             WarningKind::Subdivided => "subdivided",
             WarningKind::LooseTolerance => "loose_tolerance",
             WarningKind::NoEnergy => "no_energy",
+            WarningKind::SensitivityLost => "sensitivity_lost",
         }
     }
 }

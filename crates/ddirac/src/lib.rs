@@ -32,6 +32,7 @@ pub mod ad;
 pub mod atlas;
 #[doc(hidden)]
 pub mod baselines;
+pub mod blend;
 pub mod chart;
 mod check;
 #[doc(hidden)]

@@ -58,7 +58,7 @@ impl<const N: usize> System<N> for RuntimeSized<N> {
         inner!(self.chart_lagrangian(chart, q, v))
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &[D; N]) -> D {
         inner!(self.chart_quality(chart, q))
     }
 

@@ -74,8 +74,12 @@ pub trait System<const N: usize> {
     /// How good chart `chart` (0 for the main chart) is at the point whose coordinates in it are `q`:
     /// about 1 where the chart is regular, falling to 0 at its singular set (|sin θ| for spherical
     /// coordinates with polar angle θ).
-    fn chart_quality(&self, _chart: usize, _q: &[f64; N]) -> f64 {
-        1.0
+    ///
+    /// Written over any scalar, as the Lagrangian is: where two charts are both good, a run glues their
+    /// discrete Lagrangians with weights that are smooth functions of these measures
+    /// ([`crate::blend`]), and differentiates them.
+    fn chart_quality<D: Scalar>(&self, _chart: usize, _q: &[D; N]) -> D {
+        D::one()
     }
 
     /// Main-chart coordinates `q` of a point, moved to the representative nearest `near` (the last
@@ -132,7 +136,7 @@ impl<S: System<N> + ?Sized, const N: usize> System<N> for &S {
         (**self).chart_lagrangian(chart, q, v)
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &[D; N]) -> D {
         (**self).chart_quality(chart, q)
     }
 

@@ -124,9 +124,12 @@ fn double_spherical_pendulum_conserves_the_momentum_map() {
     assert!(summary["reference_error"].is_null());
     assert_eq!(numbers(&summary["momentum_map"]["initial"]), vec![0.0]);
     // The momenta reach 10⁶ here. While both bobs are near the bottom the run is in a chart without
-    // group coordinates, where the discrete Noether theorem conserves the momentum map to round-off of
-    // the momenta (measured 6.2e-9, 6e-15 of them); in the other charts it is exact.
-    assert!(summary["momentum_map"]["max_drift"].as_f64().unwrap() <= 1e-13 * 1e6);
+    // group coordinates, or where charts overlap (glued unreduced steps, `ddirac::blend`): there the
+    // discrete Noether theorem conserves the momentum map as far as the step's L_d is invariant in
+    // floating point — through the charts' maps — and the Newton tolerance allows (measured 6.9e-12 of
+    // the momenta over these 1000 steps; 6e-15 when the charts were switched at a step instead of
+    // glued); in a reduced step it is exact.
+    assert!(summary["momentum_map"]["max_relative_drift"].as_f64().unwrap() <= 2e-11);
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),

@@ -48,6 +48,7 @@ mod issue_30_compare_csv_number_format;
 mod issue_30_merge_verifies_shards;
 mod issue_30_messages_that_mislead;
 mod issue_30_top_crossing_upright_in_euler_angles_warns;
+mod issue_33_sensitivity_lost_warns;
 mod issue_35_kepler_example_reports_its_error;
 mod issue_35_momentum_drift_has_a_scale;
 mod issue_35_time_override_states_the_step;

@@ -4,9 +4,9 @@
 //!
 //! - its maps are inverse: ψ(φ(q')) = q' to [`ROUND_TRIP_TOLERANCE`] (relative) at every sampled
 //!   point q' of the chart (angles up to whole turns);
-//! - its quality does not claim a singular chart: where it is at least [`SWITCH_BELOW`] (where a run
-//!   may step in the chart), ∂²L/∂v² of the Lagrangian in the chart has full rank, when the main
-//!   chart's has at the initial data;
+//! - its quality does not claim a singular chart: where it is at least [`BLEND_FROM`] (where the
+//!   chart has weight in the run's glued discrete Lagrangian, [`crate::blend`]), ∂²L/∂v² of the
+//!   Lagrangian in the chart has full rank, when the main chart's has at the initial data;
 //! - its group coordinates are symmetries of L in the chart (the invariance test of a reduced run,
 //!   [`crate::reduction::invariance`]) and its angles periods of it ([`crate::periodicity`]), on pairs
 //!   near its best sampled point.
@@ -15,7 +15,8 @@
 //! within (1 + |q0|)/2 of the initial configuration, taken into the chart by ψ; those where the
 //! chart's quality is positive and finite (its domain) are kept.
 
-use crate::atlas::{round_trip_distance, InChart, SWITCH_BELOW};
+use crate::atlas::{round_trip_distance, InChart};
+use crate::blend::BLEND_FROM;
 use crate::chart::nearest_turns;
 use crate::diagnostics::{Warning, WarningKind};
 use crate::dim::Dim;
@@ -41,7 +42,7 @@ const POINTS: usize = 96;
 /// The quality below which a point counts as outside a chart's domain (at its singular set).
 const DOMAIN_FLOOR: f64 = 1e-3;
 
-/// Points of quality at least [`SWITCH_BELOW`] at which the Legendre map is tested, at most.
+/// Points of quality at least [`BLEND_FROM`] at which the Legendre map is tested, at most.
 const REGULARITY_POINTS: usize = 8;
 
 /// The tests of one chart of the atlas (index 1 onwards; 0 is the main chart).
@@ -55,7 +56,7 @@ pub struct ChartFinding {
     pub round_trip: f64,
     /// The chart point where it was largest.
     pub worst: Vec<f64>,
-    /// A chart point where the quality is at least [`SWITCH_BELOW`] but ∂²L/∂v² is singular, and the
+    /// A chart point where the quality is at least [`BLEND_FROM`] but ∂²L/∂v² is singular, and the
     /// quality there.
     pub singular_where_good: Option<(Vec<f64>, f64)>,
     /// For each group coordinate of the chart, the invariance of L_d in the chart.
@@ -126,7 +127,7 @@ pub(crate) fn chart_findings<S: SystemIn<Dm>, Dm: Dim>(
                     finding.round_trip = finding.round_trip.max(apart);
                     finding.worst = here.as_ref().to_vec();
                 }
-                if main_regular && quality >= SWITCH_BELOW && tested < REGULARITY_POINTS {
+                if main_regular && quality >= BLEND_FROM && tested < REGULARITY_POINTS {
                     tested += 1;
                     let rank = legendre::rank_in(dim, &in_chart, &here, &dim.array(|_| 0.0));
                     if rank < dim.n() && finding.singular_where_good.is_none() {

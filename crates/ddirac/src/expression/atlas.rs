@@ -40,7 +40,7 @@ impl TextAtlas {
     }
 
     /// The measure of chart `chart` (0: the main chart) at its point `q` (the spec's coordinates).
-    pub(super) fn quality(&self, chart: usize, q: &[f64]) -> f64 {
+    pub(super) fn quality<D: crate::Scalar>(&self, chart: usize, q: &[D]) -> D {
         match chart {
             0 => self.quality.eval(q),
             _ => self.charts[chart - 1].quality.eval(q),

@@ -97,8 +97,8 @@ impl SystemIn<Dynamic> for ExpressionLagrangian {
         }
     }
 
-    fn chart_quality(&self, chart: usize, q: &Vec<f64>) -> f64 {
-        self.atlas.as_ref().map_or(1.0, |atlas| atlas.quality(chart, q))
+    fn chart_quality<D: crate::Scalar>(&self, chart: usize, q: &Vec<D>) -> D {
+        self.atlas.as_ref().map_or(D::one(), |atlas| atlas.quality(chart, q))
     }
 }
 

@@ -129,7 +129,7 @@ impl<const N: usize> System<N> for ExpressionSystem<N> {
         }
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
-        self.atlas.as_ref().map_or(1.0, |atlas| atlas.quality(chart, &q[..self.own]))
+    fn chart_quality<D: crate::Scalar>(&self, chart: usize, q: &[D; N]) -> D {
+        self.atlas.as_ref().map_or(D::one(), |atlas| atlas.quality(chart, &q[..self.own]))
     }
 }

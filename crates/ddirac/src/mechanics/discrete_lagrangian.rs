@@ -19,45 +19,8 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::dim::{self, PairFunction};
 
+pub use super::rule::Rule;
 use crate::{RuntimeInput, System};
-
-/// The quadrature rule that turns L(q, v) into L_d(q0, q1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Rule {
-    /// h L(q0, (q1 − q0)/h)
-    Left,
-    /// h L(q1, (q1 − q0)/h)
-    Right,
-    /// h L((q0 + q1)/2, (q1 − q0)/h)
-    Midpoint,
-    /// h/2 [L(q0, v) + L(q1, v)], v = (q1 − q0)/h
-    Trapezoid,
-}
-
-impl Rule {
-    /// All rules, in the order of the table above.
-    pub const ALL: [Rule; 4] = [Rule::Left, Rule::Right, Rule::Midpoint, Rule::Trapezoid];
-
-    /// The rule's name in specs: `left`, `right`, `midpoint`, `trapezoid`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Rule::Left => "left",
-            Rule::Right => "right",
-            Rule::Midpoint => "midpoint",
-            Rule::Trapezoid => "trapezoid",
-        }
-    }
-
-    /// Parses a rule name.
-    ///
-    /// ```
-    /// assert_eq!(ddirac::Rule::from_name("midpoint"), Some(ddirac::Rule::Midpoint));
-    /// assert_eq!(ddirac::Rule::from_name("simpson"), None);
-    /// ```
-    pub fn from_name(name: &str) -> Option<Rule> {
-        Rule::ALL.into_iter().find(|r| r.name() == name)
-    }
-}
 
 /// L_d of a system for a rule and a step size.
 ///
@@ -119,36 +82,10 @@ impl<S> DiscreteLagrangian<S> {
         D: Scalar + std::ops::Add<B, Output = D>,
         B: Entry + Copy,
     {
-        let h = self.step;
-        // In a trace that keeps it as an input, h is a number of the program; otherwise a constant.
-        let step = D::runtime_input(RuntimeInput::Step, h);
-        let reciprocal = step.map(|h| h.recip());
-        let over_h = |x: D| match reciprocal {
-            Some(r) => x * r,
-            None => x * h.recip(),
-        };
-        let times_h = |x: D, weight: f64| match step {
-            Some(h) => x * (h * weight),
-            None => x * (weight * h),
-        };
-        let mut v = d1.clone();
-        for (v, d0) in v.as_mut().iter_mut().zip(d0.as_ref()) {
-            *v = over_h(*v - *d0);
+        if let Some(glued) = self.system.discrete(self.rule, self.step, base, d0, d1) {
+            return glued;
         }
-        let at = |weight0: f64, weight1: f64| -> Dm::Array<D> {
-            let mut q = d0.clone();
-            for ((q, d1), base) in q.as_mut().iter_mut().zip(d1.as_ref()).zip(base.as_ref()) {
-                *q = *q * weight0 + *d1 * weight1 + *base;
-            }
-            q
-        };
-        let l = |q: &Dm::Array<D>| Lagrangian::<Dm>::lagrangian(&self.system, q, &v);
-        match self.rule {
-            Rule::Left => times_h(l(&at(1.0, 0.0)), 1.0),
-            Rule::Right => times_h(l(&at(0.0, 1.0)), 1.0),
-            Rule::Midpoint => times_h(l(&at(0.5, 0.5)), 1.0),
-            Rule::Trapezoid => times_h(l(&at(1.0, 0.0)) + l(&at(0.0, 1.0)), 0.5),
-        }
+        by_rule::<Dm, D, B>(self.rule, self.step, base, d0, d1, |q, v| self.system.lagrangian(q, v))
     }
 
     /// L_d(q0, q1), generic over the scalar, in the global chart.
@@ -238,5 +175,51 @@ struct Local<'l, S, Dm: Dim> {
 impl<S: Lagrangian<Dm>, Dm: Dim> PairFunction<Dm> for Local<'_, S, Dm> {
     fn eval<D: Scalar>(&self, a: &Dm::Array<D>, b: &Dm::Array<D>) -> D {
         self.ld.eval_in::<Dm, D, f64>(self.base, a, b)
+    }
+}
+
+/// L_d of `rule` and step `h` at q0 = base + d0, q1 = base + d1 for the Lagrangian `l` (the table of
+/// the module documentation), on any scalar; h is a runtime input of a trace that keeps it.
+pub(crate) fn by_rule<Dm, D, B>(
+    rule: Rule,
+    h: f64,
+    base: &Dm::Array<B>,
+    d0: &Dm::Array<D>,
+    d1: &Dm::Array<D>,
+    l: impl Fn(&Dm::Array<D>, &Dm::Array<D>) -> D,
+) -> D
+where
+    Dm: Dim,
+    D: Scalar + std::ops::Add<B, Output = D>,
+    B: Entry + Copy,
+{
+    // In a trace that keeps it as an input, h is a number of the program; otherwise a constant.
+    let step = D::runtime_input(RuntimeInput::Step, h);
+    let reciprocal = step.map(|h| h.recip());
+    let over_h = |x: D| match reciprocal {
+        Some(r) => x * r,
+        None => x * h.recip(),
+    };
+    let times_h = |x: D, weight: f64| match step {
+        Some(h) => x * (h * weight),
+        None => x * (weight * h),
+    };
+    let mut v = d1.clone();
+    for (v, d0) in v.as_mut().iter_mut().zip(d0.as_ref()) {
+        *v = over_h(*v - *d0);
+    }
+    let at = |weight0: f64, weight1: f64| -> Dm::Array<D> {
+        let mut q = d0.clone();
+        for ((q, d1), base) in q.as_mut().iter_mut().zip(d1.as_ref()).zip(base.as_ref()) {
+            *q = *q * weight0 + *d1 * weight1 + *base;
+        }
+        q
+    };
+    let l = |q: &Dm::Array<D>| l(q, &v);
+    match rule {
+        Rule::Left => times_h(l(&at(1.0, 0.0)), 1.0),
+        Rule::Right => times_h(l(&at(0.0, 1.0)), 1.0),
+        Rule::Midpoint => times_h(l(&at(0.5, 0.5)), 1.0),
+        Rule::Trapezoid => times_h(l(&at(1.0, 0.0)) + l(&at(0.0, 1.0)), 0.5),
     }
 }

@@ -6,13 +6,33 @@
 //! is one in [`Dynamic`]. The engine from the schemes to the stepper is written over a dimension and
 //! runs either.
 
-use crate::dim::{Dim, Dynamic, Fixed};
+use crate::dim::{Dim, Dynamic, Entry, Fixed};
+use crate::mechanics::rule::Rule;
 use crate::{Chart, Coordinate, CoordinateKind, Scalar, System};
 
 /// L(q, v) on arrays of a dimension, generic over the scalar.
 pub trait Lagrangian<Dm: Dim> {
     /// L(q, v).
     fn lagrangian<D: Scalar>(&self, q: &Dm::Array<D>, v: &Dm::Array<D>) -> D;
+
+    /// The discrete Lagrangian of `rule` and step `step` at q0 = base + d0, q1 = base + d1 where it is
+    /// not the rule applied to [`Lagrangian::lagrangian`] (an atlas's charts glued: [`crate::blend`]);
+    /// `None`, the default, where it is.
+    #[inline(always)]
+    fn discrete<D, B>(
+        &self,
+        _rule: Rule,
+        _step: f64,
+        _base: &Dm::Array<B>,
+        _d0: &Dm::Array<D>,
+        _d1: &Dm::Array<D>,
+    ) -> Option<D>
+    where
+        D: Scalar + std::ops::Add<B, Output = D>,
+        B: Entry + Copy,
+    {
+        None
+    }
 }
 
 impl<S: System<N>, const N: usize> Lagrangian<Fixed<N>> for S {
@@ -58,8 +78,8 @@ pub trait SystemIn<Dm: Dim>: Lagrangian<Dm> {
     }
 
     /// How good chart `chart` is at its point `q`.
-    fn chart_quality(&self, _chart: usize, _q: &Dm::Array<f64>) -> f64 {
-        1.0
+    fn chart_quality<D: Scalar>(&self, _chart: usize, _q: &Dm::Array<D>) -> D {
+        D::one()
     }
 
     /// A main-chart point `q` as the representative nearest `near`.
@@ -106,7 +126,7 @@ impl<S: System<N>, const N: usize> SystemIn<Fixed<N>> for S {
         System::chart_lagrangian(self, chart, q, v)
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; N]) -> f64 {
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &[D; N]) -> D {
         System::chart_quality(self, chart, q)
     }
 
@@ -174,7 +194,7 @@ impl<S: System<N>, const N: usize> SystemIn<Dynamic> for AsDynamic<S, N> {
         self.0.chart_lagrangian(chart, &Self::array(q), &Self::array(v))
     }
 
-    fn chart_quality(&self, chart: usize, q: &Vec<f64>) -> f64 {
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &Vec<D>) -> D {
         self.0.chart_quality(chart, &Self::array(q))
     }
 
@@ -236,7 +256,7 @@ impl<S: SystemIn<Dm>, Dm: Dim> SystemIn<Dm> for Borrowed<'_, S> {
         self.0.chart_lagrangian(chart, q, v)
     }
 
-    fn chart_quality(&self, chart: usize, q: &Dm::Array<f64>) -> f64 {
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &Dm::Array<D>) -> D {
         self.0.chart_quality(chart, q)
     }
 

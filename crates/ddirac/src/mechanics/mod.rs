@@ -6,3 +6,4 @@ pub mod discrete_lagrangian;
 pub mod euler_lagrange;
 pub mod lagrangian;
 pub mod legendre;
+pub mod rule;

@@ -15,11 +15,7 @@ use crate::diagnostics::OutputError;
 use crate::diagnostics::{Row, Summary};
 use crate::dim::{Dim, Fixed};
 use crate::mechanics::lagrangian::SystemIn;
-use crate::{CoordinateKind, Error, InitialMomentum, Method, Problem, Split};
-
-/// How far (relative) a point may come back from a chart's maps there and back and still count as in
-/// the chart.
-const DOMAIN_TOLERANCE: f64 = 1e-6;
+use crate::{CoordinateKind, Differentiation, Error, InitialMomentum, Method, Problem, Split};
 
 /// A run of a [`Problem`] for a [`System`](crate::System) with a [`Method`], one step at a time.
 ///
@@ -66,9 +62,16 @@ pub struct StepperIn<S, Dm: Dim> {
     dim: Dm,
     problem: Problem,
     method: Method,
-    /// The stepper of each chart the run has entered (index: the chart; 0 is the main chart).
+    /// The stepper of each chart the run has entered (index: the chart; 0 is the main chart), then
+    /// those of the charts' glued steps ([`crate::blend`]; index: the number of charts + the chart).
     charts: Vec<Option<ChartStepper<InChart<S, Dm>, Dm>>>,
+    /// The number of charts of the atlas.
+    count: usize,
     current: usize,
+    /// Whether the current stepper takes glued steps.
+    glued: bool,
+    /// The chart alone with weight at the current point, if known ([`atlas::sole_chart`]): (k, chart).
+    sole_here: Option<(usize, Option<usize>)>,
     /// Whether the run switches charts: the system has an atlas and the method asks for it.
     switching: bool,
     /// The current point in the main chart, followed step by step outside it (continuous angles).
@@ -110,7 +113,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         let carries_momentum =
             atlas::all_charts(&system).iter().map(|c| Split::new(c.as_ref()).n_g() == split.n_g()).collect();
         let mut charts = vec![Some(main)];
-        charts.resize_with(extra + 1, || None);
+        charts.resize_with(2 * (extra + 1), || None);
         let switching = method.atlas && extra > 0;
         let mut stepper = Self {
             system,
@@ -118,7 +121,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
             problem: problem.clone(),
             method: method.clone(),
             charts,
+            count: extra + 1,
             current: 0,
+            glued: false,
+            sole_here: None,
             switching,
             near,
             split,
@@ -134,20 +140,29 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         Ok(stepper)
     }
 
+    /// The index in `charts` of the stepper of chart `chart`, plain or glued.
+    fn slot(&self, chart: usize, glued: bool) -> usize {
+        chart + if glued { self.count } else { 0 }
+    }
+
     fn chart(&self) -> &ChartStepper<InChart<S, Dm>, Dm> {
-        self.charts[self.current].as_ref().expect("the current chart has a stepper")
+        self.charts[self.slot(self.current, self.glued)].as_ref().expect("the current chart has a stepper")
     }
 
     fn chart_mut(&mut self) -> &mut ChartStepper<InChart<S, Dm>, Dm> {
-        self.charts[self.current].as_mut().expect("the current chart has a stepper")
+        let slot = self.slot(self.current, self.glued);
+        self.charts[slot].as_mut().expect("the current chart has a stepper")
     }
 
     /// Report angles wrapped to (−π, π] (in [`Stepper::row`](crate::StepperIn::row) and the summary's final q) instead of
     /// continuous; the default is continuous.
     pub fn set_wrap_angles(&mut self, wrap: bool) {
         self.wrap_angles = wrap;
-        if let Some(main) = &mut self.charts[0] {
-            main.set_wrap_angles(wrap);
+        let glued_main = self.count;
+        for main in [0, glued_main] {
+            if let Some(main) = &mut self.charts[main] {
+                main.set_wrap_angles(wrap);
+            }
         }
     }
 
@@ -198,38 +213,75 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         if !self.switching {
             return self.chart_mut().step();
         }
-        // The chart of a step is chosen at the step's midpoint, a choice a reversed step makes
-        // alike: switches then leave the run as reversible as its steps. It is chosen at the
-        // predicted midpoint, and the step is taken again in another chart if the midpoint of the
-        // step taken prefers that one.
-        let chart = self.chart();
-        let (q, dim) = (chart.progress.config.unwrapped(), self.dim);
-        let midpoint = |dq: Dm::Array<f64>| -> Dm::Array<f64> { dim.array(|i| q[i] + 0.5 * dq[i]) };
-        let target = self.preferred_chart(&midpoint(chart.predicted_increment()));
-        if target != self.current {
-            self.switch_to(target)?;
+        // Where one chart alone has weight at both ends of the step (of each sub-step), the glued
+        // discrete Lagrangian is that chart's: the step is taken with its own scheme, and again
+        // glued if the step taken reaches where another chart has weight too.
+        let k = self.k();
+        let (q, dim) = (self.chart().progress.config.unwrapped(), self.dim);
+        let predicted = self.chart().predicted_increment();
+        let sole = self.sole_at(k, &q);
+        if let Some(chart) = sole.filter(|_| self.sole_at(usize::MAX, &dim.array(|i| q[i] + predicted[i])) == sole) {
+            if (chart, false) != (self.current, self.glued) {
+                self.switch_to(chart, false)?;
+            }
+            self.keep_before();
+            let start = self.chart().progress.config.unwrapped();
             let report = self.chart_mut().step()?;
-            self.follow();
-            return Ok(report);
+            let taken = self.chart().progress.config.unwrapped();
+            // A composition's sub-steps go beyond the step's ends: each of their ends counts.
+            let ends = self.chart().stage_ends(&start);
+            let sole_throughout = ends.iter().all(|end| self.sole_at(usize::MAX, end) == Some(chart));
+            if sole_throughout && self.sole_at(k + 1, &taken) == Some(chart) {
+                self.follow();
+                return Ok(report);
+            }
+            self.take_back();
         }
-        let progress = &self.charts[self.current].as_ref().expect("the current chart has a stepper").progress;
+        // A glued step, in the chart preferred at the step's predicted midpoint (a choice of
+        // coordinates alone: the glued L_d is the same function in every chart).
+        let q = self.chart().progress.config.unwrapped();
+        let predicted = self.chart().predicted_increment();
+        let target = self.preferred_chart(&dim.array(|i| q[i] + 0.5 * predicted[i]));
+        if (target, true) != (self.current, self.glued) {
+            self.switch_to(target, true)?;
+        }
+        self.sole_here = None;
+        let report = self.chart_mut().step()?;
+        self.follow();
+        Ok(report)
+    }
+
+    /// Keeps the current stepper's progress before a step, to take the step back.
+    fn keep_before(&mut self) {
+        let slot = self.slot(self.current, self.glued);
+        let progress = &self.charts[slot].as_ref().expect("the current chart has a stepper").progress;
         match &mut self.before {
             Some(saved) => saved.clone_from(progress),
             None => self.before = Some(progress.clone()),
         }
-        let report = self.chart_mut().step()?;
-        let taken = self.chart().progress.config.unwrapped();
-        let target = self.preferred_chart(&midpoint(dim.array(|i| taken[i] - q[i])));
-        if target != self.current {
-            let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
-            std::mem::swap(&mut chart.progress, self.before.as_mut().expect("saved before the step"));
-            self.switch_to(target)?;
-            let report = self.chart_mut().step()?;
-            self.follow();
-            return Ok(report);
+    }
+
+    /// Takes back the step taken since [`Self::keep_before`].
+    fn take_back(&mut self) {
+        let slot = self.slot(self.current, self.glued);
+        let chart = self.charts[slot].as_mut().expect("the current chart has a stepper");
+        std::mem::swap(&mut chart.progress, self.before.as_mut().expect("kept before the step"));
+    }
+
+    /// The chart alone with weight ([`atlas::sole_chart`]) at the point `q` of the current chart, the
+    /// current point of step `k` (remembered) or another (`k = usize::MAX`).
+    fn sole_at(&mut self, k: usize, q: &Dm::Array<f64>) -> Option<usize> {
+        if let Some((known, sole)) = self.sole_here {
+            if known == k && k != usize::MAX {
+                return sole;
+            }
         }
-        self.follow();
-        Ok(report)
+        let main = atlas::point(&self.system, self.current, 0, q);
+        let sole = atlas::sole_chart(&self.system, &self.kinds, self.count, &main);
+        if k != usize::MAX {
+            self.sole_here = Some((k, sole));
+        }
+        sole
     }
 
     /// After a step in another chart: the main-chart point followed, and the momentum map measured
@@ -243,7 +295,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         self.near = self.system.nearest_in_main(raw, &self.near, &self.kinds);
         if !self.carries_momentum[self.current] {
             if let Some((_, p_main)) = atlas::transition(&self.system, self.current, 0, &q, &p) {
-                let chart = self.charts[self.current].as_mut().expect("the current chart has a stepper");
+                let slot = self.slot(self.current, self.glued);
+                let chart = self.charts[slot].as_mut().expect("the current chart has a stepper");
                 chart.progress.record.drift(&self.split, &p_main, &p_main);
             }
         }
@@ -256,27 +309,14 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         (chart.progress.config.unwrapped(), p)
     }
 
-    /// The measure of chart `chart` at the main-chart point `main`, if the point is in the chart:
-    /// its maps take it there and back (a chart's ψ may be defined beyond its domain, as the
-    /// projection of a hemisphere is on the other one).
-    fn quality_at(&self, chart: usize, main: &Dm::Array<f64>) -> Option<f64> {
-        if chart == 0 {
-            return Some(self.system.chart_quality(0, main)).filter(|q| q.is_finite());
-        }
-        let there = atlas::point(&self.system, 0, chart, main);
-        let back = self.system.nearest_in_main(atlas::point(&self.system, chart, 0, &there), main, &self.kinds);
-        let apart = atlas::round_trip_distance(main.as_ref(), back.as_ref());
-        let quality = self.system.chart_quality(chart, &there);
-        (apart <= DOMAIN_TOLERANCE && quality.is_finite()).then_some(quality)
-    }
-
     /// The chart for a step whose midpoint is `q` (in the current chart), a function of the point
     /// alone: the main chart where its measure is at least [`SWITCH_BELOW`]; else the chart with the
     /// largest measure among those that carry the momentum map (have the main chart's group
     /// coordinates), if that is at least [`SWITCH_BELOW`]; else the chart with the largest measure.
     fn preferred_chart(&self, q: &Dm::Array<f64>) -> usize {
         let main = if self.current == 0 { q.clone() } else { atlas::point(&self.system, self.current, 0, q) };
-        let qualities = (0..self.charts.len()).filter_map(|c| self.quality_at(c, &main).map(|quality| (c, quality)));
+        let qualities = (0..self.count)
+            .filter_map(|c| atlas::measure_at(&self.system, &self.kinds, c, &main).map(|quality| (c, quality)));
         let (mut carrying, mut any) = (None::<(usize, f64)>, None::<(usize, f64)>);
         for (chart, quality) in qualities {
             if chart == 0 && quality >= SWITCH_BELOW {
@@ -296,19 +336,24 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         }
     }
 
-    /// Moves to the preferred chart at the current point (before a first step).
+    /// Moves to the chart alone with weight at the current point, else to the preferred chart there
+    /// (before a first step).
     fn choose_chart(&mut self) -> Result<(), Error> {
         let q = self.chart().progress.config.unwrapped();
-        let target = self.preferred_chart(&q);
-        if target != self.current {
-            self.switch_to(target)?;
+        let k = self.k();
+        let target = match self.sole_at(k, &q) {
+            Some(chart) => chart,
+            None => self.preferred_chart(&q),
+        };
+        if (target, false) != (self.current, self.glued) {
+            self.switch_to(target, false)?;
         }
         Ok(())
     }
 
     /// Moves the state of step k to chart `to` by the cotangent lift and continues there from a
-    /// first step, with the run's record and energy watch.
-    fn switch_to(&mut self, to: usize) -> Result<(), Error> {
+    /// first step, with the run's record and energy watch, in glued steps if `glued`.
+    fn switch_to(&mut self, to: usize, glued: bool) -> Result<(), Error> {
         let k = self.k();
         let (q, p) = self.chart_state();
         let Some((mut q_to, p_to)) = atlas::transition(&self.system, self.current, to, &q, &p) else {
@@ -319,18 +364,20 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         } else {
             self.inverse_at(to, &q_to)?;
         }
-        if self.charts[to].is_none() {
-            self.charts[to] = Some(self.prepare(to, &q_to, &p_to)?);
+        let slot = self.slot(to, glued);
+        if self.charts[slot].is_none() {
+            self.charts[slot] = Some(self.prepare(to, &q_to, &p_to, glued)?);
         }
         // The run's diagnostics span the whole run: its record, and the energy watch with the
         // energy of the last step (H is a function on T*Q, and each chart's discrete energy follows it
         // to O(h²)), so that a jump or a drift is measured against the run before the switch.
         let from = &self.chart().progress;
         let (mut record, monitor, last_energy) = (from.record.clone(), from.monitor.clone(), from.last_energy);
-        if let Some(tangent) = &mut record.tangent {
-            *tangent = self.switch_map(self.current, to, &q, &p, &q_to) * &*tangent;
+        if record.tangent.is_some() && to != self.current {
+            let map = self.switch_map(self.current, to, &q, &p, &q_to);
+            record.compose_tangent(&map, (k, self.t()), "chart switch");
         }
-        let stepper = self.charts[to].as_mut().expect("prepared");
+        let stepper = self.charts[slot].as_mut().expect("prepared");
         stepper.restart(&StateIn::new(k, q_to, p_to))?;
         let progress = &mut stepper.progress;
         (progress.record, progress.monitor, progress.last_energy) = (record, monitor, last_energy);
@@ -338,8 +385,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         if self.current == 0 {
             self.near = q;
         }
-        self.current = to;
-        self.switches += 1;
+        if to != self.current {
+            self.switches += 1;
+        }
+        (self.current, self.glued) = (to, glued);
         Ok(())
     }
 
@@ -380,19 +429,31 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     }
 
     /// The stepper of chart `chart`, prepared at (q, p) of that chart: the method of the run, without
-    /// the main chart's connection, and unreduced in a chart without group coordinates.
+    /// the main chart's connection, and unreduced in a chart without group coordinates. The stepper of
+    /// glued steps ([`crate::blend`]) is unreduced and takes dual numbers (which charts have weight
+    /// changes from step to step, which a compiled program cannot follow).
     fn prepare(
         &self,
         chart: usize,
         q: &Dm::Array<f64>,
         p: &Dm::Array<f64>,
+        glued: bool,
     ) -> Result<ChartStepper<InChart<S, Dm>, Dm>, Error> {
-        let in_chart = InChart::new(self.system.clone(), chart);
+        let in_chart =
+            if glued { InChart::glued(self.system.clone(), chart) } else { InChart::new(self.system.clone(), chart) };
         let has_group = Split::new(in_chart.coordinates().as_ref()).n_g() > 0;
-        let method = Method { connection: None, reduced: self.method.reduced && has_group, ..self.method.clone() };
+        let mut method =
+            Method { connection: None, reduced: self.method.reduced && has_group && !glued, ..self.method.clone() };
+        if glued {
+            method.differentiation = Differentiation::Dual;
+        }
         let (q0, p0) = (q.as_ref().to_vec(), p.as_ref().to_vec());
         let problem = Problem { q0, initial: InitialMomentum::Momentum(p0), ..self.problem.clone() };
-        ChartStepper::new(in_chart, &problem, &method, false)
+        let mut stepper = ChartStepper::new(in_chart, &problem, &method, false)?;
+        if chart == 0 {
+            stepper.set_wrap_angles(self.wrap_angles);
+        }
+        Ok(stepper)
     }
 
     /// The row of the current step k in the main chart: q_k, p_k, the Hamiltonian, the momentum map
@@ -476,6 +537,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         }
         if let Some(memory) = &mut state.memory {
             memory.chart = self.current;
+            memory.glued = self.glued;
             memory.near = self.near.clone();
         }
         state
@@ -500,22 +562,23 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     fn restart_here(&mut self, state: &StateIn<Dm>) -> Result<(), Error> {
         let Some(memory) = &state.memory else {
             self.charts[0].as_mut().expect("the main chart has a stepper").restart(state)?;
-            (self.current, self.near) = (0, state.q.clone());
+            (self.current, self.glued, self.near, self.sole_here) = (0, false, state.q.clone(), None);
             return if self.switching { self.choose_chart() } else { Ok(()) };
         };
-        let chart = memory.chart;
-        if chart >= self.charts.len() {
+        let (chart, glued) = (memory.chart, memory.glued);
+        if chart >= self.count {
             return Err(Error::Invalid { what: crate::Input::State, why: crate::Reason::NoSuchChart { chart } });
         }
-        if self.charts[chart].is_none() {
+        let slot = self.slot(chart, glued);
+        if self.charts[slot].is_none() {
             let Some((q, p)) = atlas::transition(&self.system, 0, chart, &state.q, &state.p) else {
                 let why = crate::Reason::OutsideChart { chart };
                 return Err(Error::Invalid { what: crate::Input::State, why });
             };
-            self.charts[chart] = Some(self.prepare(chart, &q, &p)?);
+            self.charts[slot] = Some(self.prepare(chart, &q, &p, glued)?);
         }
-        self.charts[chart].as_mut().expect("prepared").restart(state)?;
-        (self.current, self.near) = (chart, memory.near.clone());
+        self.charts[slot].as_mut().expect("prepared").restart(state)?;
+        (self.current, self.glued, self.near, self.sole_here) = (chart, glued, memory.near.clone(), None);
         Ok(())
     }
 
@@ -542,7 +605,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         self.near = main.progress.config.unwrapped();
         self.problem = problem.clone();
         self.charts.iter_mut().skip(1).for_each(|chart| *chart = None);
-        (self.current, self.switches) = (0, 0);
+        (self.current, self.glued, self.switches, self.sole_here) = (0, false, 0, None);
         if self.switching {
             self.choose_chart()?;
         }
@@ -565,6 +628,10 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     fn summary_here(&mut self) -> Result<Summary, Error> {
         let mut summary = self.chart_mut().summary()?;
         summary.chart_switches = self.switches;
+        // The derivatives of the run are the main chart's (glued steps take dual numbers).
+        if let Some(main) = &self.charts[0] {
+            summary.derivatives = main.derivative_path.clone();
+        }
         if self.current != 0 {
             let (q, p) = self.chart_state();
             let tangent = &self.chart().progress.record.tangent;

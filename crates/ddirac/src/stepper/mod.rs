@@ -215,6 +215,11 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         equipped!(&self.schemes, e => self.progress.predicted_increment(&e.first().scheme))
     }
 
+    /// The configurations at the ends of the sub-steps of the step just taken from `start`.
+    fn stage_ends(&self, start: &Dm::Array<f64>) -> Vec<Dm::Array<f64>> {
+        equipped!(&self.schemes, e => self.progress.stage_ends(&e.first().scheme, start))
+    }
+
     /// The canonical momenta p_k.
     fn p(&self) -> Dm::Array<f64> {
         equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&self.progress.momenta))
@@ -314,7 +319,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         let p = equipped!(&self.schemes, e => e.first().scheme.p_from_momenta(&progress.momenta));
         let (method, h) = (self.context.method.clone(), self.context.h);
         let (chart, near) = (0, progress.config.unwrapped());
-        let memory = Memory { method, h, progress: progress.clone(), chart, near };
+        let memory = Memory { method, h, progress: progress.clone(), chart, glued: false, near };
         StateIn { k: progress.k, q: progress.config.unwrapped(), p, memory: Some(Box::new(memory)) }
     }
 

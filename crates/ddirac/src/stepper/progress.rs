@@ -130,6 +130,28 @@ impl<Dm: Dim> Clone for Record<Dm> {
 }
 
 impl<Dm: Dim> Record<Dm> {
+    /// With a tangent map: composes the run's with `map`, the tangent map of the `what` ("step",
+    /// "chart switch") at `at` = (k, t_k), and warns once if the run's tangent map stops being finite.
+    pub(crate) fn compose_tangent(&mut self, map: &nalgebra::DMatrix<f64>, at: (usize, f64), what: &str) {
+        let Some(run) = &mut self.tangent else { return };
+        let was_finite = run.iter().all(|x| x.is_finite());
+        *run = map * &*run;
+        if was_finite && !run.iter().all(|x| x.is_finite()) {
+            let cause = if map.iter().all(|x| x.is_finite()) {
+                "its entries overflowed: the flow stretches some direction by more than 1e308"
+            } else if what == "step" {
+                "the linearized step equations are singular or not finite here"
+            } else {
+                "the charts' maps have no derivative here"
+            };
+            let message = format!(
+                "the tangent map of the flow (method.sensitivities) could not be carried through this {what} \
+                 ({cause}): sensitivity.state is not finite from here on"
+            );
+            self.warnings.push(Warning::new(WarningKind::SensitivityLost, Some(at), message));
+        }
+    }
+
     /// Folds the momentum map of the scheme's `momenta` into the largest drift, and the momenta `p`
     /// into its scale (the canonical p where the step has them, else the scheme's momenta).
     pub(super) fn drift(&mut self, split: &Split, momenta: &Dm::Array<f64>, p: &Dm::Array<f64>) {
@@ -174,6 +196,19 @@ impl<Dm: Dim> Progress<Dm> {
             sum.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(s, d)| *s += d);
         }
         sum
+    }
+
+    /// The configurations at the ends of the sub-steps of the step just taken from `start`, from the
+    /// unknowns each sub-step's predictor took last.
+    pub(super) fn stage_ends(&self, scheme: &impl Scheme<Dm>, start: &Dm::Array<f64>) -> Vec<Dm::Array<f64>> {
+        let mut at = start.clone();
+        let mut ends = Vec::with_capacity(self.stages.len());
+        for memory in &self.stages {
+            let dq = scheme.increment(memory.predictor.newest());
+            at.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(a, d)| *a += d);
+            ends.push(at.clone());
+        }
+        ends
     }
 
     /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq` (γ · dq
@@ -508,8 +543,8 @@ impl<Dm: Dim> Progress<Dm> {
         let (k, action) = (self.k, method.energy_jump.action);
         let t = k as f64 * h;
         let Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed, tangent } = taken;
-        if let (Some(step), Some(run)) = (tangent, &mut self.record.tangent) {
-            *run = step * &*run;
+        if let Some(step) = tangent {
+            self.record.compose_tangent(&step, (k, t), "step");
         }
         if let Some(unresolved) = self.angles.watch(&dq) {
             if let Some(warning) = self.fast_angle(context, &dq, unresolved) {
@@ -830,6 +865,11 @@ impl<Dm: Dim> Predictor<Dm> {
         self.newest = if self.newest == 0 { 2 } else { self.newest - 1 };
         self.last[self.newest] = z;
         self.count += 1;
+    }
+
+    /// The unknowns taken last.
+    pub(super) fn newest(&self) -> &Dm::Vector {
+        &self.last[self.newest]
     }
 
     pub(super) fn predict(&self) -> Dm::Vector {

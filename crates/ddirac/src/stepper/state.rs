@@ -41,6 +41,8 @@ pub(super) struct Memory<Dm: Dim> {
     pub(super) progress: Progress<Dm>,
     /// The chart the progress is in, and the last point in the main chart.
     pub(super) chart: usize,
+    /// Whether the progress is that of the chart's glued steps ([`crate::blend`]).
+    pub(super) glued: bool,
     pub(super) near: Dm::Array<f64>,
 }
 

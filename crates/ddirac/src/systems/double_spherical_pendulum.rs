@@ -257,14 +257,14 @@ impl System<4> for DoubleSphericalPendulum {
         Some(kinetic - z1 * (g * (m1 + m2) * l1) - z2 * (g * m2 * l2))
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; 4]) -> f64 {
-        let edge = |x: f64, y: f64| (1.0 - x * x - y * y).max(0.0).sqrt();
+    fn chart_quality<D: Scalar>(&self, chart: usize, q: &[D; 4]) -> D {
+        let edge = |x: D, y: D| crate::chart::root_or_zero(-(x * x + y * y) + 1.0);
         let (first, second) = match chart {
             0 | 1 => (q[1].sin().abs(), q[3].sin().abs()),
             2 => (q[1].sin().abs(), q[2].sin().abs()),
             _ => (edge(q[0], q[1]), edge(q[2], q[3])),
         };
-        first.min(second)
+        first.min_of(second)
     }
 
     fn nearest_in_main(&self, q: [f64; 4], near: &[f64; 4], _kinds: &[crate::CoordinateKind; 4]) -> [f64; 4] {

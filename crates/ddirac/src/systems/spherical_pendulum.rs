@@ -102,10 +102,10 @@ impl System<2> for SphericalPendulum {
         [s * q[0].cos(), s * q[0].sin()]
     }
 
-    fn chart_quality(&self, chart: usize, q: &[f64; 2]) -> f64 {
+    fn chart_quality<D: DualNum<Primitive = f64> + Copy>(&self, chart: usize, q: &[D; 2]) -> D {
         match chart {
             0 => q[1].sin().abs(),
-            _ => (1.0 - q[0] * q[0] - q[1] * q[1]).max(0.0).sqrt(),
+            _ => crate::chart::root_or_zero(-(q[0] * q[0] + q[1] * q[1]) + 1.0),
         }
     }
 }

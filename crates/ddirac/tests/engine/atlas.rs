@@ -128,12 +128,11 @@ fn the_double_spherical_pendulum_runs_a_million_steps_with_bounded_energy() {
 }
 
 /// A run of 10⁵ switches: a spherical pendulum whose polar angle swings between 0.45 and 0.9 rad from
-/// the bottom, across the surface where the chart of a step changes (the main chart's measure at 1/√2),
-/// twice a swing. The momentum map keeps its digits. The energy error grows slowly with the switches
-/// (the two charts' discrete Lagrangians have different modified energies, and the steps sample the
-/// switching surface at a varying phase; measured 8.4e-4 after 2·10⁴ switches, 4.9e-3 after 10⁵ at
-/// h = 0.01, about 5e-8 per switch) but stays below the error of the polar chart alone on the same
-/// motion (7.5e-3, bounded).
+/// the bottom, through the overlap of the main chart and the lower cap, where the charts' discrete
+/// Lagrangians are glued into one (`ddirac::blend`). The momentum map keeps its digits. The energy error
+/// stays bounded: one discrete Lagrangian has one modified energy (measured 1.6e-4 after 10⁵ switches,
+/// against the polar chart alone's 7.0e-3; when the charts were switched at a step, with two modified
+/// energies, it grew by about 5e-8 per switch to 4.9e-3).
 #[test]
 fn a_run_of_a_hundred_thousand_switches_keeps_the_momentum_map_and_the_energy_bounded() {
     let system = SphericalPendulum { g: 98.0, ..SphericalPendulum::default() };
@@ -157,7 +156,7 @@ fn a_run_of_a_hundred_thousand_switches_keeps_the_momentum_map_and_the_energy_bo
     let (polar, _, _) = run(false);
     eprintln!("{switches} switches: |ΔH/H0| {energy:.2e} (polar chart alone {polar:.2e}); momentum map {momentum:.1e} (relative)");
     assert!(switches >= 100_000, "{switches}");
-    assert!(energy < polar, "{energy:e} against {polar:e}");
+    assert!(energy < 0.1 * polar, "{energy:e} against {polar:e}");
     assert!(momentum < 1e-9, "{momentum:e}");
 }
 

@@ -42,6 +42,7 @@ mod issue_13_pole_passage_is_named;
 mod issue_13_pole_passages_switch_charts;
 mod issue_14_failed_steps_are_subdivided;
 mod issue_14_long_step_leaves_the_chart;
+mod issue_30_atlas_error_regular_in_h;
 mod issue_30_atlas_never_used_is_refused;
 mod issue_30_chart_maps_not_inverse_are_refused;
 mod issue_30_check_and_run_agree_on_charts;
