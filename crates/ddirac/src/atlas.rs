@@ -20,7 +20,7 @@
 pub use crate::chart::nearest_turns;
 use num_dual::Dual;
 
-use crate::blend::{partition, rise};
+use crate::blend::{partition, rise, sole};
 use crate::chart::nearest_turns as turns;
 use crate::dim::{Dim, Entry};
 use crate::mechanics::discrete_lagrangian::by_rule;
@@ -256,29 +256,17 @@ pub(crate) fn measure_at<S: SystemIn<Dm>, Dm: Dim>(
     (apart <= DOMAIN_TOLERANCE && measure.is_finite()).then_some(measure)
 }
 
-/// The charts with weight at the main-chart point `main`, with their weights (summing to one), in
-/// the charts' order; empty where no chart's measure reaches [`BLEND_FROM`].
-pub(crate) fn weights_at<S: SystemIn<Dm>, Dm: Dim>(
-    system: &S,
-    kinds: &Dm::Array<CoordinateKind>,
-    charts: usize,
-    main: &Dm::Array<f64>,
-) -> Vec<(usize, f64)> {
-    let rises = (0..charts).filter_map(|c| measure_at(system, kinds, c, main).map(|m| (c, rise(m))));
-    partition(rises)
-}
-
-/// The chart that alone has weight at the main-chart point `main`, if one does.
+/// The chart that alone has weight at the main-chart point `main`, if one does: the weights
+/// w_c ∝ σ_c Π_{j<c} (1 − σ_j) of [`crate::blend`] leave one chart with weight exactly where one chart
+/// in the domain has σ > 0 up to the first whose σ is one. Allocates nothing (it is asked at every
+/// step's ends): [`sole`] of the charts' σ.
 pub(crate) fn sole_chart<S: SystemIn<Dm>, Dm: Dim>(
     system: &S,
     kinds: &Dm::Array<CoordinateKind>,
     charts: usize,
     main: &Dm::Array<f64>,
 ) -> Option<usize> {
-    match weights_at(system, kinds, charts, main).as_slice() {
-        [(chart, _)] => Some(*chart),
-        _ => None,
-    }
+    sole((0..charts).filter_map(|c| measure_at(system, kinds, c, main).map(|m| (c, rise(m)))))
 }
 
 /// The atlas glued: the Lagrangian of each chart, and the kinds of each chart's coordinates.

@@ -83,3 +83,43 @@ pub(crate) fn partition<D: Scalar>(rises: impl Iterator<Item = (usize, D)>) -> V
     let total = -rest + 1.0;
     raw.into_iter().map(|(chart, w)| (chart, w / total)).collect()
 }
+
+/// The chart that alone has weight in [`partition`] of the same σ, if one does, without allocating:
+/// the one chart with σ > 0 up to the first whose σ is one.
+pub(crate) fn sole(rises: impl Iterator<Item = (usize, f64)>) -> Option<usize> {
+    let mut found = None;
+    for (chart, sigma) in rises {
+        if sigma <= 0.0 {
+            continue;
+        }
+        if found.is_some() {
+            return None;
+        }
+        found = Some(chart);
+        if sigma >= 1.0 {
+            break;
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// `sole` names a chart exactly where `partition` gives one chart all the weight.
+        #[test]
+        fn sole_agrees_with_the_partition(sigmas in prop::collection::vec(
+            prop_oneof![Just(0.0), Just(1.0), 0.0..1.0f64], 0..6)) {
+            let rises = || sigmas.iter().copied().enumerate();
+            let weights = partition(rises());
+            let expected = match weights.as_slice() {
+                [(chart, w)] => { prop_assert!((w - 1.0).abs() < 1e-15); Some(*chart) }
+                _ => None,
+            };
+            prop_assert_eq!(sole(rises()), expected);
+        }
+    }
+}

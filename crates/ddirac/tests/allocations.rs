@@ -274,10 +274,6 @@ fn a_run_with_an_atlas_steps_without_allocating() {
         let short = run_allocations(&system, 0.01, 200, &q0, &p0, &method);
         let long = run_allocations(&system, 0.01, 2000, &q0, &p0, &method);
         eprintln!("spherical pendulum with its atlas, reduced = {reduced}: {short} allocations for 200 steps, {long} for 2000");
-        // The chart choice of the glued atlas (`ddirac::blend`) collects the weights at the step's
-        // ends and its sub-steps' ends in small vectors: 4 allocations per step measured; the step
-        // itself allocates nothing. Bounded here until the choice is written without them.
-        let per_step = (long as f64 - short as f64) / 1800.0;
-        assert!(per_step <= 8.0, "allocations per step: {per_step:.2}");
+        assert_eq!(short, long, "allocations per step: {:.2}", (long as f64 - short as f64) / 1800.0);
     }
 }

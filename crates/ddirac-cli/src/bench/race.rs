@@ -309,6 +309,24 @@ pub(super) fn equal_error(methods: &BTreeMap<String, Vec<Point>>) -> Vec<EqualEr
     result
 }
 
+/// The order-8 composition's step count over ten times the duration: that of DOP853's cost
+/// `dop853_seconds` at the composition's cost per step in its fastest timed run (`points`), and at
+/// least ten times the fewest timed steps, so that no step is longer than a timed run's (a longer step
+/// may leave Newton's method without a solution); the line printed says when that raised the count.
+pub(super) fn long_run_steps(points: &[Point], dop853_seconds: f64) -> usize {
+    let per_step = points.iter().map(|p| p.seconds / p.parameter).fold(f64::INFINITY, f64::min);
+    let equal_cost = (dop853_seconds / per_step) as usize;
+    let fewest = points.iter().map(|p| p.parameter).fold(f64::INFINITY, f64::min);
+    let shortest_timed = if fewest.is_finite() { 10 * fewest as usize } else { 10 };
+    if equal_cost < shortest_timed {
+        println!(
+            "    the long run's order-8 composition at DOP853's cost would take {equal_cost} steps, longer than any \
+             timed run's: it takes {shortest_timed} (not of equal cost)"
+        );
+    }
+    equal_cost.max(shortest_timed)
+}
+
 /// Over ten times the duration: DOP853 at 1e-8 and the composition of order 8 with the step count
 /// of equal cost (from the timed runs), each with its largest relative energy error; `None` without
 /// the peer.
@@ -327,8 +345,7 @@ fn long_run<S: System<N>, const N: usize>(
     let dop853_seconds = started.elapsed().as_secs_f64();
     // The order-8 composition's cost per step, from its fastest timed run.
     let Some(points) = methods.get("order 8") else { return Ok(None) };
-    let per_step = points.iter().map(|p| p.seconds / p.parameter).fold(f64::INFINITY, f64::min);
-    let n = ((dop853_seconds / per_step) as usize).max(10);
+    let n = long_run_steps(points, dop853_seconds);
     let problem = Problem::new(long / n as f64, n, q0.to_vec(), InitialMomentum::Momentum(p0.to_vec()));
     // H(q0, p0): the energy of the first row.
     let mut h0 = f64::NAN;
@@ -376,4 +393,24 @@ fn panel(race: &Race) -> Panel {
     Panel::new("seconds per run", quantity, series)
         .scale(Scale::LogLog)
         .caption(format!("{}; against {against}", race.system))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn timed(parameter: f64, seconds: f64) -> Point {
+        Point { parameter, error: 1e-6, seconds }
+    }
+
+    #[test]
+    fn the_long_run_takes_no_longer_steps_than_the_timed_runs() {
+        // The double spherical pendulum's quick race once asked its long run for 59 steps over ten
+        // times a duration whose timed runs took 70 and 100 (h = 16.9 against 1.43): Newton's method
+        // found no step. The long run now takes at least ten times the fewest timed steps.
+        let points = [timed(70.0, 0.057), timed(100.0, 0.073)];
+        assert_eq!(long_run_steps(&points, 0.048), 700);
+        // Where DOP853's cost buys more steps, the long run takes them: 0.073 s per 100 steps.
+        assert_eq!(long_run_steps(&points, 1.5), 2054);
+    }
 }

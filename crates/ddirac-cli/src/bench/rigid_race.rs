@@ -19,7 +19,7 @@ use ddirac::{Composition, Method, Rule};
 
 use super::dop853;
 use super::harness::Contender;
-use super::race::{equal_error, timed_points, LongRun, Point, Race};
+use super::race::{equal_error, long_run_steps, timed_points, LongRun, Point, Race};
 use super::{failed, Settings};
 
 type M3 = [[f64; 3]; 3];
@@ -124,8 +124,7 @@ fn long_run(methods: &BTreeMap<String, Vec<Point>>) -> Result<Option<LongRun>, m
     let dop853_energy_error = end?.energy_error;
     let dop853_seconds = started.elapsed().as_secs_f64();
     let Some(points) = methods.get("order 8") else { return Ok(None) };
-    let per_step = points.iter().map(|p| p.seconds / p.parameter).fold(f64::INFINITY, f64::min);
-    let n = ((dop853_seconds / per_step) as usize).max(10);
+    let n = long_run_steps(points, dop853_seconds);
     let mut h0 = f64::NAN;
     let mut largest: f64 = 0.0;
     let started = std::time::Instant::now();

@@ -220,7 +220,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         let (q, dim) = (self.chart().progress.config.unwrapped(), self.dim);
         let predicted = self.chart().predicted_increment();
         let sole = self.sole_at(k, &q);
-        if let Some(chart) = sole.filter(|_| self.sole_at(usize::MAX, &dim.array(|i| q[i] + predicted[i])) == sole) {
+        if let Some(chart) = sole.filter(|_| self.sole_anywhere(&dim.array(|i| q[i] + predicted[i])) == sole) {
             if (chart, false) != (self.current, self.glued) {
                 self.switch_to(chart, false)?;
             }
@@ -229,8 +229,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
             let report = self.chart_mut().step()?;
             let taken = self.chart().progress.config.unwrapped();
             // A composition's sub-steps go beyond the step's ends: each of their ends counts.
-            let ends = self.chart().stage_ends(&start);
-            let sole_throughout = ends.iter().all(|end| self.sole_at(usize::MAX, end) == Some(chart));
+            let sole_throughout =
+                self.chart().all_stage_ends(&start, &mut |end| self.sole_anywhere(end) == Some(chart));
             if sole_throughout && self.sole_at(k + 1, &taken) == Some(chart) {
                 self.follow();
                 return Ok(report);
@@ -268,20 +268,23 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         std::mem::swap(&mut chart.progress, self.before.as_mut().expect("kept before the step"));
     }
 
-    /// The chart alone with weight ([`atlas::sole_chart`]) at the point `q` of the current chart, the
-    /// current point of step `k` (remembered) or another (`k = usize::MAX`).
+    /// The chart alone with weight ([`atlas::sole_chart`]) at the current point `q` of step `k`,
+    /// remembered for the step.
     fn sole_at(&mut self, k: usize, q: &Dm::Array<f64>) -> Option<usize> {
         if let Some((known, sole)) = self.sole_here {
-            if known == k && k != usize::MAX {
+            if known == k {
                 return sole;
             }
         }
-        let main = atlas::point(&self.system, self.current, 0, q);
-        let sole = atlas::sole_chart(&self.system, &self.kinds, self.count, &main);
-        if k != usize::MAX {
-            self.sole_here = Some((k, sole));
-        }
+        let sole = self.sole_anywhere(q);
+        self.sole_here = Some((k, sole));
         sole
+    }
+
+    /// The chart alone with weight ([`atlas::sole_chart`]) at the point `q` of the current chart.
+    fn sole_anywhere(&self, q: &Dm::Array<f64>) -> Option<usize> {
+        let main = atlas::point(&self.system, self.current, 0, q);
+        atlas::sole_chart(&self.system, &self.kinds, self.count, &main)
     }
 
     /// After a step in another chart: the main-chart point followed, and the momentum map measured

@@ -215,9 +215,9 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> ChartStepper<S, Dm> {
         equipped!(&self.schemes, e => self.progress.predicted_increment(&e.first().scheme))
     }
 
-    /// The configurations at the ends of the sub-steps of the step just taken from `start`.
-    fn stage_ends(&self, start: &Dm::Array<f64>) -> Vec<Dm::Array<f64>> {
-        equipped!(&self.schemes, e => self.progress.stage_ends(&e.first().scheme, start))
+    /// Whether `each` holds at the end of every sub-step of the step just taken from `start`.
+    fn all_stage_ends(&self, start: &Dm::Array<f64>, each: &mut dyn FnMut(&Dm::Array<f64>) -> bool) -> bool {
+        equipped!(&self.schemes, e => self.progress.all_stage_ends(&e.first().scheme, start, each))
     }
 
     /// The canonical momenta p_k.

@@ -198,17 +198,21 @@ impl<Dm: Dim> Progress<Dm> {
         sum
     }
 
-    /// The configurations at the ends of the sub-steps of the step just taken from `start`, from the
-    /// unknowns each sub-step's predictor took last.
-    pub(super) fn stage_ends(&self, scheme: &impl Scheme<Dm>, start: &Dm::Array<f64>) -> Vec<Dm::Array<f64>> {
+    /// Whether `each` holds at every configuration at the end of a sub-step of the step just taken
+    /// from `start` (from the unknowns each sub-step's predictor took last); stops at the first
+    /// where it does not, and allocates nothing.
+    pub(super) fn all_stage_ends(
+        &self,
+        scheme: &impl Scheme<Dm>,
+        start: &Dm::Array<f64>,
+        each: &mut dyn FnMut(&Dm::Array<f64>) -> bool,
+    ) -> bool {
         let mut at = start.clone();
-        let mut ends = Vec::with_capacity(self.stages.len());
-        for memory in &self.stages {
+        self.stages.iter().all(|memory| {
             let dq = scheme.increment(memory.predictor.newest());
             at.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(a, d)| *a += d);
-            ends.push(at.clone());
-        }
-        ends
+            each(&at)
+        })
     }
 
     /// The progress of a first step from `start` = (k, q, p), with predictor increment `dq` (γ · dq
