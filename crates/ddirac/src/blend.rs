@@ -13,9 +13,10 @@
 //!
 //! they are one discrete Lagrangian on Q × Q: consistent to the rule's order (each L_d^c is, and the
 //! weights sum to one), symmetric where the rule is (midpoint, trapezoid; the composition of order 4
-//! keeps its order, while those of orders 6 and 8 need more derivatives of the weights than [`rise`]
-//! has and lose theirs where long steps cross overlaps: BENCHMARKS.md, "The double spherical
-//! pendulum's race after gluing"), and the same function in whichever chart it is evaluated. A run's map is then one
+//! keeps its order, while the error of orders 6 and 8 holds high derivatives of the weights, which
+//! change over a few steps, and at the steps those orders are used for is far from its asymptotic
+//! size, also with smoother weights: BENCHMARKS.md, "The double spherical pendulum's race after
+//! gluing"), and the same function in whichever chart it is evaluated. A run's map is then one
 //! symplectic map whatever chart a step is solved in, and a chart switch (the cotangent lift) changes
 //! the coordinates and nothing else.
 //!
