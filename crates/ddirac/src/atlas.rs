@@ -9,7 +9,8 @@
 //! retraction-compatible chart of its own, so a step in it is the paper's scheme in that chart:
 //! symplectic, and equivariant where the group translates the chart's group coordinates.
 //!
-//! The charts' discrete Lagrangians are glued into one on Q × Q ([`crate::blend`]). Before each step
+//! The charts' discrete Lagrangians are glued into one on Q × Q ([`crate::blend`]; orders 6 and 8
+//! switch at a step instead, [`glues`]). Before each step
 //! the run chooses the chart to solve it in — the one chart with weight at the step's ends, else the
 //! best at its predicted midpoint ([`SWITCH_BELOW`]) — and, if it is another, moves there:
 //! q' = ψ_b(φ_a(q)) and the momenta by the cotangent lift p' = Dτ(q')ᵀ p of the transition
@@ -36,6 +37,17 @@ use crate::{Coordinate, CoordinateKind, Scalar};
 /// Lagrangian is the same function in each, so the choice is one of coordinates (of the conditioning
 /// of the step's equations), not of the method.
 pub const SWITCH_BELOW: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Whether a run with `method` glues its charts' discrete Lagrangians where they overlap
+/// ([`crate::blend`]): for the rule alone and compositions of order 4. Compositions of order 6 and 8
+/// switch charts at a step instead (each step with the scheme of the chart preferred at its
+/// midpoint, [`SWITCH_BELOW`]): glued, their error holds the weights' high derivatives and loses their
+/// order at the steps they are taken with (the over-the-top spherical pendulum's error at order 8 was
+/// not monotone in h), while a switch is a step of the order of either chart's (an error O(h^{p+1})
+/// where the two differ); the constant of the error then depends on where the steps fall.
+pub fn glues(method: &crate::Method) -> bool {
+    method.composition.order() < 6
+}
 
 /// A system seen in chart `chart` of its atlas (0: the main chart): the chart's coordinates, and the
 /// Lagrangian L ∘ Tφ of the chart.

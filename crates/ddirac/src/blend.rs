@@ -16,14 +16,14 @@
 //! keeps its order, while the error of orders 6 and 8 holds high derivatives of the weights, which
 //! change over a few steps, and at the steps those orders are used for is far from its asymptotic
 //! size, also with smoother weights: BENCHMARKS.md, "The double spherical pendulum's race after
-//! gluing"), and the same function in whichever chart it is evaluated. A run's map is then one
+//! gluing"; those orders switch charts at a step instead, [`crate::atlas::glues`]), and the same function in whichever chart it is evaluated. A run's map is then one
 //! symplectic map whatever chart a step is solved in, and a chart switch (the cotangent lift) changes
 //! the coordinates and nothing else.
 //!
 //! The partition comes from the charts' measures ([`crate::System::chart_quality`]): σ rises from 0 at
 //! measure [`BLEND_FROM`] to 1 at [`BLEND_TO`] ([`rise`], four times continuously differentiable), and the
 //! charts take priority in their order, the main chart first: w_c ∝ σ_c Π_{j<c} (1 − σ_j) over the
-//! charts whose domain holds the point, normalized by the sum 1 − Π_j (1 − σ_j). Where the main
+//! charts whose domain holds the point, normalized by their sum (1 − Π_j (1 − σ_j)). Where the main
 //! chart's measure is at least `BLEND_TO` it alone counts (a system whose charts give no measure stays
 //! in its main chart); where one chart alone counts at both ends of a step, L_d is that chart's, and a
 //! run takes the step with the chart's own scheme (compiled, reduced where it has group coordinates).
@@ -70,20 +70,23 @@ pub fn rise<D: Scalar>(measure: D) -> D {
 }
 
 /// The weights w_c ∝ σ_c Π_{j<c} (1 − σ_j) of the charts given with their σ in order, those that are
-/// not zero, normalized by their sum.
+/// not zero, normalized by their sum. (The sum is 1 − Π_c (1 − σ_c), but written so it would round to
+/// zero where every σ is below the rounding of 1, and a lone chart's weight would be infinite.)
 pub(crate) fn partition<D: Scalar>(rises: impl Iterator<Item = (usize, D)>) -> Vec<(usize, D)> {
     let mut rest = D::one();
+    let mut total = D::zero();
     let mut raw = Vec::new();
     for (chart, sigma) in rises {
         if rest.re() == 0.0 {
             break;
         }
         if sigma.re() > 0.0 {
-            raw.push((chart, rest * sigma));
+            let weight = rest * sigma;
+            total += weight;
+            raw.push((chart, weight));
             rest *= -sigma + 1.0;
         }
     }
-    let total = -rest + 1.0;
     raw.into_iter().map(|(chart, w)| (chart, w / total)).collect()
 }
 
@@ -124,5 +127,31 @@ mod tests {
             };
             prop_assert_eq!(sole(rises()), expected);
         }
+
+        /// The weights are finite, positive and sum to one, however small the σ (down to the
+        /// smallest normal numbers, where 1 − Π (1 − σ) rounds to zero).
+        #[test]
+        fn the_weights_sum_to_one_for_any_rises(sigmas in prop::collection::vec(
+            prop_oneof![Just(0.0), Just(1.0), 0.0..1.0f64, (-300.0..-1.0f64).prop_map(|e| 10f64.powf(e))], 1..6)) {
+            let weights = partition(sigmas.iter().copied().enumerate());
+            if sigmas.iter().any(|&s| s > 0.0) {
+                let total: f64 = weights.iter().map(|(_, w)| w).sum();
+                prop_assert!((total - 1.0).abs() < 1e-14, "{sigmas:?} → {weights:?}");
+                prop_assert!(weights.iter().all(|(_, w)| w.is_finite() && *w > 0.0), "{sigmas:?} → {weights:?}");
+            } else {
+                prop_assert!(weights.is_empty());
+            }
+        }
+    }
+
+    /// A chart alone, its σ below the rounding of 1 (its measure 2.3e-5 above 0.3, where σ rises from 0):
+    /// its weight is 1, not 1e-20 / (1 − (1 − 1e-20)) = 1e-20 / 0.
+    #[test]
+    fn a_lone_chart_of_tiny_rise_has_weight_one() {
+        assert_eq!(partition([(2, 1e-20)].into_iter()), vec![(2, 1.0)]);
+        // Two such charts share the weight as their raw weights 1e-20 and (1 − 1e-20) 3e-20 do.
+        let shared = partition([(0, 1e-20), (1, 3e-20)].into_iter());
+        assert_eq!(shared.len(), 2);
+        assert!((shared[0].1 - 0.25).abs() < 1e-15 && (shared[1].1 - 0.75).abs() < 1e-15, "{shared:?}");
     }
 }

@@ -1,8 +1,11 @@
 //! The public stepper: a run over the charts of the system's atlas (paper §6; [`crate::atlas`]).
 //!
 //! Each chart has its own [`ChartStepper`] (its scheme, derivatives, predictor and Newton memory),
-//! prepared when the run first enters the chart. Each step is taken in the chart preferred at its
-//! midpoint ([`SWITCH_BELOW`]); the run moves the state there by the cotangent lift
+//! prepared when the run first enters the chart. A step where one chart alone has weight is taken with
+//! that chart's scheme, one where charts overlap with the glued discrete Lagrangian ([`crate::blend`])
+//! in the chart preferred at its midpoint ([`SWITCH_BELOW`]); compositions of order 6 and 8 take
+//! every step with the scheme of the chart preferred at its midpoint ([`atlas::glues`]). The run moves
+//! the state to another chart by the cotangent lift
 //! ([`atlas::transition`]) and continues from a first step, with the run's record and energy watch
 //! carried over.
 //! Rows, states and the summary are given in the main chart, with continuous angles. A run without
@@ -213,6 +216,9 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         if !self.switching {
             return self.chart_mut().step();
         }
+        if !atlas::glues(&self.method) {
+            return self.switched_step();
+        }
         // Where one chart alone has weight at both ends of the step (of each sub-step), the glued
         // discrete Lagrangian is that chart's: the step is taken with its own scheme, and again
         // glued if the step taken reaches where another chart has weight too.
@@ -246,6 +252,20 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
             self.switch_to(target, true)?;
         }
         self.sole_here = None;
+        let report = self.chart_mut().step()?;
+        self.follow();
+        Ok(report)
+    }
+
+    /// A step of a method that switches charts at a step ([`atlas::glues`]): in the chart preferred at
+    /// the step's predicted midpoint, with that chart's own scheme.
+    fn switched_step(&mut self) -> Result<StepReport, Error> {
+        let (q, dim) = (self.chart().progress.config.unwrapped(), self.dim);
+        let predicted = self.chart().predicted_increment();
+        let target = self.preferred_chart(&dim.array(|i| q[i] + 0.5 * predicted[i]));
+        if (target, false) != (self.current, self.glued) {
+            self.switch_to(target, false)?;
+        }
         let report = self.chart_mut().step()?;
         self.follow();
         Ok(report)
@@ -344,10 +364,8 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     fn choose_chart(&mut self) -> Result<(), Error> {
         let q = self.chart().progress.config.unwrapped();
         let k = self.k();
-        let target = match self.sole_at(k, &q) {
-            Some(chart) => chart,
-            None => self.preferred_chart(&q),
-        };
+        let sole = if atlas::glues(&self.method) { self.sole_at(k, &q) } else { None };
+        let target = sole.unwrap_or_else(|| self.preferred_chart(&q));
         if (target, false) != (self.current, self.glued) {
             self.switch_to(target, false)?;
         }

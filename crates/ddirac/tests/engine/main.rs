@@ -47,6 +47,7 @@ mod issue_30_atlas_never_used_is_refused;
 mod issue_30_chart_maps_not_inverse_are_refused;
 mod issue_30_check_and_run_agree_on_charts;
 mod issue_30_energy_watch_spans_chart_switches;
+mod issue_30_high_orders_keep_their_order_in_an_atlas;
 mod issue_30_loose_tolerance_never_accepts_the_predictor;
 mod issue_30_pi_is_not_a_name;
 mod issue_30_unresolved_pole_passage_warns;
