@@ -28,7 +28,7 @@ from ._ddirac import ConvergenceError, Error, ExpressionError, InvarianceError, 
 from .system import System, builtin_systems
 from .convergence import ConvergenceTable, convergence
 from .ensembles import EnsembleResult, ensemble
-from .equilibria import RelativeEquilibrium, relative_equilibria
+from .equilibria import RelativeEquilibrium, RelativeEquilibriumFamily, relative_equilibria, relative_equilibrium_family
 from .run import Run, check, simulate
 from .rigid import RigidBody, RigidRun
 from .run_warnings import (
@@ -41,6 +41,7 @@ from .spec import Spec, load
 __all__ = [
     "ConvergenceError", "ConvergenceTable", "EnsembleResult", "Error", "ExpressionError", "InvarianceError", "Run",
     "RigidBody", "RigidRun", "RelativeEquilibrium", "relative_equilibria",
+    "RelativeEquilibriumFamily", "relative_equilibrium_family",
     "Spec", "SpecError", "System", "builtin_systems", "check", "convergence", "ensemble", "load", "simulate", "__version__",
     "RunWarning", "EnergyDriftWarning", "EnergyJumpWarning", "InvarianceUndecidedWarning",
     "LooseToleranceWarning", "NewtonFallbackWarning", "NoEnergyWarning", "NotInvariantWarning", "SensitivityLostWarning",

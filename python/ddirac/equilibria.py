@@ -85,6 +85,56 @@ def _by_name(values: Optional[Values], names: Sequence[str], what: str) -> list[
     return out
 
 
+class RelativeEquilibriumFamily:
+    """A family of relative equilibria continued along the momentum of one group coordinate, ``along``
+    (:func:`relative_equilibrium_family`), with the fields of :class:`RelativeEquilibrium` stacked by
+    member: ``values`` (the momentum of ``along``, one per member), ``shape`` and ``shape_momentum``
+    (members × shape coordinates, in the order of ``shape_names``), ``momentum`` and ``group_velocity``
+    (members × group coordinates), ``multipliers`` (members × k × 2, (re, im)), ``frequencies``
+    (members × k), ``stable`` (one bool per member); ``members`` (the :class:`RelativeEquilibrium` of
+    each), ``stability_changes`` (the consecutive values between which the stability changes) and
+    ``ended`` (``None``, or the value whose search failed and why: natural continuation stops at a
+    fold, where the family turns back in the momentum)."""
+
+    along: str
+    members: list[RelativeEquilibrium]
+    shape_names: list[str]
+    group_names: list[str]
+    values: np.ndarray
+    shape: np.ndarray
+    shape_momentum: np.ndarray
+    momentum: np.ndarray
+    group_velocity: np.ndarray
+    multipliers: np.ndarray
+    frequencies: np.ndarray
+    stable: np.ndarray
+    stability_changes: list[tuple[float, float]]
+    ended: Optional[tuple[float, str]]
+
+    def __init__(self, along: str, found: Mapping[str, Any]) -> None:
+        self.along = along
+        self.members = [RelativeEquilibrium(m) for m in found["members"]]
+        first = self.members[0]
+        self.shape_names, self.group_names = first.shape_names, first.group_names
+        stack = lambda field: np.stack([getattr(m, field) for m in self.members])  # noqa: E731
+        self.shape, self.shape_momentum = stack("shape"), stack("shape_momentum")
+        self.momentum, self.group_velocity = stack("momentum"), stack("group_velocity")
+        self.multipliers, self.frequencies = stack("multipliers"), stack("frequencies")
+        self.stable = np.array([m.stable for m in self.members], dtype=bool)
+        self.values = self.momentum[:, self.group_names.index(along)].copy()
+        self.stability_changes = [(float(a), float(b)) for a, b in found["stability_changes"]]
+        ended = found["ended"]
+        self.ended = None if ended is None else (float(ended[0]), str(ended[1]))
+
+    def __len__(self) -> int:
+        return len(self.members)
+
+    def __repr__(self) -> str:
+        end = "" if self.ended is None else f", ended at {self.along} momentum {self.ended[0]:.6g}"
+        return (f"ddirac.RelativeEquilibriumFamily({len(self)} members along the momentum of {self.along}, "
+                f"{int(self.stable.sum())} stable{end})")
+
+
 def relative_equilibria(system: System, momentum: Values, guess: Values, step: float,
                         shape_momentum: Optional[Values] = None, rule: str = "midpoint", variant: str = "plus",
                         reduced: bool = False, **method: Any) -> RelativeEquilibrium:
@@ -98,13 +148,60 @@ def relative_equilibria(system: System, momentum: Values, guess: Values, step: f
     Returns a :class:`RelativeEquilibrium`; raises :class:`ddirac.Error` when the search fails (no
     convergence, a multiplier 1, a step that fails). An angle of the group that turns by more than
     π/2 in a step has its group velocity known only modulo 2π/h: that is warned."""
-    from .run import _prepare
-    from .rigid import RigidBody
+    args = _search_args(system, momentum, guess, step, shape_momentum, rule, variant, reduced, method)
+    raw = _ddirac.relative_equilibrium(system._handle, args)
+    found = RelativeEquilibrium(raw)
+    _warn(found, raw["ambiguous"])
+    return found
 
-    if isinstance(system, RigidBody):
-        raise _ddirac.Error("relative_equilibria does not take rigid bodies yet")
-    if not isinstance(system, System):
-        raise _ddirac.Error(f"`system` must be a ddirac.System, not {type(system).__name__}")
+
+def relative_equilibrium_family(system: System, along: str, values: Sequence[float], guess: Values, step: float,
+                                momentum: Optional[Values] = None, shape_momentum: Optional[Values] = None,
+                                rule: str = "midpoint", variant: str = "plus", reduced: bool = False,
+                                **method: Any) -> RelativeEquilibriumFamily:
+    """The family of relative equilibria through the one :func:`relative_equilibria` finds from
+    ``guess`` at the first of ``values``, continued along the momentum of the group coordinate
+    ``along`` over ``values`` (natural continuation: each member's search starts from the members
+    before), the other group momenta held at ``momentum`` (default 0; its entry for ``along`` is
+    replaced). The same search as ``ddirac equilibria --family``:
+    ``ddirac.relative_equilibrium_family(pendulum, along="phi", values=np.linspace(0.5, 3, 11),
+    guess={"theta": 0.5}, step=0.005)``.
+
+    Returns a :class:`RelativeEquilibriumFamily`. Raises :class:`ddirac.Error` when ``along`` is not a
+    group coordinate, ``values`` is empty or not finite, or the first search fails; a later failure
+    ends the family (its ``ended``, also warned)."""
+    _searchable(system)
+    if not isinstance(along, str):
+        raise _ddirac.Error(f"`along` must be the name of a group coordinate, not {type(along).__name__}")
+    points = np.asarray(values, dtype=float).ravel()
+    if points.size == 0:
+        raise _ddirac.Error("`values` is empty: the family needs at least one value of the momentum")
+    bad = [v for v in points if not math.isfinite(v)]
+    if bad:
+        raise _ddirac.Error(f"`values` holds {bad[0]}, which is not a finite number")
+    group = list(system.group)
+    level = dict(zip(group, _by_name(momentum, group, "momentum")))
+    if along in level:
+        level[along] = float(points[0])
+    args = _search_args(system, level, guess, step, shape_momentum, rule, variant, reduced, method)
+    raw = _ddirac.relative_equilibrium_family(system._handle, args, along, [float(v) for v in points])
+    found = RelativeEquilibriumFamily(along, raw)
+    for member, member_raw in zip(found.members, raw["members"]):
+        _warn(member, member_raw["ambiguous"])
+    if found.ended is not None:
+        warnings.warn(f"the family ends at the momentum {found.ended[0]:.6g} of `{along}` ({len(found)} of "
+                      f"{points.size} values found): {found.ended[1]}", UserWarning, stacklevel=2)
+    return found
+
+
+def _search_args(system: System, momentum: Optional[Values], guess: Values, step: float,
+                 shape_momentum: Optional[Values], rule: str, variant: str, reduced: bool,
+                 method: Mapping[str, Any]) -> dict[str, Any]:
+    """The run arguments of a search: q0 from the shape guess, p0 from the momentum level and the
+    shape momenta."""
+    from .run import _prepare
+
+    _searchable(system)
     names = system.coordinates
     group = list(system.group)
     shape = [n for n in names if n not in group]
@@ -113,15 +210,27 @@ def relative_equilibria(system: System, momentum: Values, guess: Values, step: f
     ps = dict(zip(shape, _by_name(shape_momentum, shape, "shape_momentum")))
     q0 = [s.get(n, 0.0) for n in names]
     p0 = [ps[n] if n in ps else mu[n] for n in names]
-    args = _prepare(system, q0, p0, None, step, 1, None, rule, variant, reduced, method)
-    raw = _ddirac.relative_equilibrium(system._handle, args)
-    found = RelativeEquilibrium(raw)
-    for name in raw["ambiguous"]:
+    return _prepare(system, q0, p0, None, step, 1, None, rule, variant, reduced, method)
+
+
+def _searchable(system: Any) -> None:
+    """An error unless the searches take ``system``: a :class:`ddirac.System` other than a rigid body."""
+    from .rigid import RigidBody
+
+    if isinstance(system, RigidBody):
+        raise _ddirac.Error("relative equilibria of rigid bodies are not searched yet")
+    if not isinstance(system, System):
+        raise _ddirac.Error(f"`system` must be a ddirac.System, not {type(system).__name__}")
+
+
+def _warn(found: RelativeEquilibrium, ambiguous: Sequence[str]) -> None:
+    """The warnings of a relative equilibrium found: a group velocity known only modulo 2π/h, a map
+    that does not preserve volume."""
+    for name in ambiguous:
         warnings.warn(f"`{name}` turns by more than π/2 in a step of h = {found.step}: its group velocity is known "
                       f"only modulo 2π/h = {2 * math.pi / found.step:.6g}; take a smaller step to know it",
-                      UserWarning, stacklevel=2)
+                      UserWarning, stacklevel=3)
     if abs(found.determinant - 1.0) > 1e-6:
         warnings.warn(f"det DΦ_h = {found.determinant:.6g} at the relative equilibrium, not 1: the map does not "
                       f"preserve volume on this level, and the multipliers need not pair as a symplectic map's",
-                      UserWarning, stacklevel=2)
-    return found
+                      UserWarning, stacklevel=3)

@@ -1,5 +1,6 @@
-"""ddirac.relative_equilibria: the conical pendulum against its closed form (μ² = m²gl³ sin⁴θ*/cos θ*,
-ω² = g(1 + 3cos²θ*)/(l cos θ*)), the same numbers as ``ddirac equilibria``, and wrong inputs refused."""
+"""ddirac.relative_equilibria and ddirac.relative_equilibrium_family: the conical pendulum against its closed
+form (μ² = m²gl³ sin⁴θ*/cos θ*, ω² = g(1 + 3cos²θ*)/(l cos θ*)), the same numbers as ``ddirac equilibria``
+(and its ``--family``), and wrong inputs refused."""
 
 import json
 import subprocess
@@ -82,3 +83,57 @@ def test_wrong_inputs_are_refused_naming_them():
         warnings.simplefilter("always")
         ddirac.relative_equilibria(system, momentum=[1.6], guess=[1.0], step=1.0)
     assert any("turns by more than π/2" in str(w.message) for w in caught)
+
+
+def test_the_conical_pendulum_family_follows_its_closed_form():
+    values = np.linspace(0.8, 3.0, 12)
+    family = ddirac.relative_equilibrium_family(pendulum(), along="phi", values=values, guess={"theta": 0.5},
+                                                step=0.0025)
+    assert isinstance(family, ddirac.RelativeEquilibriumFamily) and len(family) == 12
+    assert family.ended is None and family.stability_changes == []
+    assert family.shape.shape == (12, 1) and family.momentum.shape == (12, 1)
+    assert family.multipliers.shape == (12, 2, 2) and family.frequencies.shape == (12, 2)
+    assert family.stable.dtype == bool and family.stable.all()
+    np.testing.assert_array_equal(family.values, values)
+    for k, mu in enumerate(values):
+        theta_star, omega = closed_form(mu)
+        # Without an atlas the midpoint rule's fixed point is the continuous one (see above).
+        assert abs(family.shape[k, 0] - theta_star) < 1e-10, (mu, family.shape[k, 0], theta_star)
+        assert abs(family.frequencies[k, 1] - omega) < 1e-3 * omega, (mu, family.frequencies[k], omega)
+        # A member is the equilibrium a search on its own level finds.
+        alone = ddirac.relative_equilibria(pendulum(), momentum=[mu], guess=[theta_star], step=0.0025)
+        assert abs(alone.shape[0] - family.shape[k, 0]) < 1e-12
+        # The conical motion turns at φ̇ = μ / sin²θ*.
+        assert abs(family.group_velocity[k, 0] - mu / np.sin(theta_star) ** 2) < 1e-6 * mu / np.sin(theta_star) ** 2
+
+
+def test_python_and_the_command_line_continue_the_same_family(tmp_path):
+    out = tmp_path / "family"
+    sets = ["initial.q.theta=0.5", "initial.p.phi=0.8", "initial.p.theta=0.0", "method.atlas=false"]
+    args = [built(), "equilibria", str(EXAMPLES / "spherical_pendulum.toml"), "--out", str(out), "--quiet",
+            "--family", "phi=0.8:3.0:12"]
+    for s in sets:
+        args += ["--set", s]
+    subprocess.run(args, check=True)
+    written = json.loads((out / "equilibria.json").read_text())["equilibria"]
+    family = ddirac.relative_equilibrium_family(pendulum(), along="phi", values=np.linspace(0.8, 3.0, 12),
+                                                guess=[0.5], step=0.005, reduced=True)  # the spec's step
+    assert len(written) == len(family)
+    for member, row in zip(written, family.members):
+        assert abs(member["shape"]["theta"] - row.shape[0]) < 1e-12
+        assert member["stable"] is row.stable
+
+
+def test_wrong_family_inputs_are_refused_naming_them():
+    system = pendulum()
+    with pytest.raises(ddirac.Error, match="`theta` is not a group coordinate"):
+        ddirac.relative_equilibrium_family(system, along="theta", values=[1.0, 2.0], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="`values` is empty"):
+        ddirac.relative_equilibrium_family(system, along="phi", values=[], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="not a finite number"):
+        ddirac.relative_equilibrium_family(system, along="phi", values=[1.0, float("inf")], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="must be the name"):
+        ddirac.relative_equilibrium_family(system, along=0, values=[1.0], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="rigid bodies"):
+        ddirac.relative_equilibrium_family(ddirac.System.builtin("rigid_body"), along="x", values=[1.0], guess=[],
+                                           step=0.1)

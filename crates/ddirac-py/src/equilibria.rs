@@ -1,8 +1,9 @@
 //! `ddirac.relative_equilibria`: the relative equilibrium of the reduced discrete map of a run's
 //! method and step on the momentum level of its initial data ([`ddirac::relative_equilibrium`]), as
-//! `ddirac equilibria` finds it, returned as a dict of arrays.
+//! `ddirac equilibria` finds it, returned as a dict of arrays; `ddirac.relative_equilibrium_family`:
+//! its continuation along the momentum of a group coordinate, as `ddirac equilibria --family` does.
 
-use ddirac::relative_equilibrium::{find, SearchOptions};
+use ddirac::relative_equilibrium::{family, find, RelativeEquilibrium, SearchOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -23,6 +24,36 @@ pub fn relative_equilibrium<'py>(
     let inner = system.inner.clone();
     let found =
         py.detach(move || find(inner.as_ref(), &problem, &method, &SearchOptions::default())).map_err(engine)?;
+    as_dict(py, &found)
+}
+
+/// The family of relative equilibria through the one nearest to the initial shape of `run_args`,
+/// continued along the momentum of the group coordinate `along` over `values`
+/// ([`ddirac::relative_equilibrium::family`]): `{"members": [dict, ...], "ended": None or (value,
+/// message), "stability_changes": [(a, b), ...]}`.
+#[pyfunction]
+pub fn relative_equilibrium_family<'py>(
+    py: Python<'py>,
+    system: &SystemHandle,
+    run_args: RunArgs,
+    along: String,
+    values: Vec<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (problem, method) = run_args.problem_and_method(&*system.inner)?;
+    let inner = system.inner.clone();
+    let found = py
+        .detach(move || family(inner.as_ref(), &problem, &method, &along, &values, &SearchOptions::default()))
+        .map_err(engine)?;
+    let members = found.members.iter().map(|m| as_dict(py, m)).collect::<PyResult<Vec<_>>>()?;
+    let d = PyDict::new(py);
+    d.set_item("members", members)?;
+    d.set_item("ended", found.ended.as_ref().map(|(value, error)| (*value, error.to_string())))?;
+    d.set_item("stability_changes", found.stability_changes())?;
+    Ok(d)
+}
+
+/// A relative equilibrium as a dict of arrays.
+fn as_dict<'py>(py: Python<'py>, found: &RelativeEquilibrium) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("shape_names", found.shape_names.clone())?;
     d.set_item("group_names", found.group_names.clone())?;

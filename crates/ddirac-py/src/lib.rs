@@ -36,6 +36,7 @@ fn _ddirac(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     m.add_function(wrap_pyfunction!(equilibria::relative_equilibrium, m)?)?;
+    m.add_function(wrap_pyfunction!(equilibria::relative_equilibrium_family, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::method_keys, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::convergence_stability, m)?)?;
