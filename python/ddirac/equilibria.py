@@ -173,7 +173,12 @@ def relative_equilibrium_family(system: System, along: str, values: Sequence[flo
     _searchable(system)
     if not isinstance(along, str):
         raise _ddirac.Error(f"`along` must be the name of a group coordinate, not {type(along).__name__}")
-    points = np.asarray(values, dtype=float).ravel()
+    try:
+        points = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise _ddirac.Error(f"`values` must be a sequence of numbers: {error}") from None
+    if points.ndim != 1:
+        raise _ddirac.Error(f"`values` must be one-dimensional (the momenta of `{along}`), not of shape {points.shape}")
     if points.size == 0:
         raise _ddirac.Error("`values` is empty: the family needs at least one value of the momentum")
     bad = [v for v in points if not math.isfinite(v)]

@@ -132,6 +132,14 @@ def test_wrong_family_inputs_are_refused_naming_them():
         ddirac.relative_equilibrium_family(system, along="phi", values=[], guess=[0.5], step=0.01)
     with pytest.raises(ddirac.Error, match="not a finite number"):
         ddirac.relative_equilibrium_family(system, along="phi", values=[1.0, float("inf")], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="one-dimensional"):
+        ddirac.relative_equilibrium_family(system, along="phi", values=[[1.0, 2.0]], guess=[0.5], step=0.01)
+    with pytest.raises(ddirac.Error, match="sequence of numbers"):
+        ddirac.relative_equilibrium_family(system, along="phi", values=["one"], guess=[0.5], step=0.01)
+    # A momentum level that names `along` has that entry replaced by the first value.
+    family = ddirac.relative_equilibrium_family(system, along="phi", values=[1.6], momentum={"phi": 99.0},
+                                                guess=[1.0], step=0.0025)
+    assert family.values.tolist() == [1.6] and abs(family.shape[0, 0] - closed_form(1.6)[0]) < 1e-10
     with pytest.raises(ddirac.Error, match="must be the name"):
         ddirac.relative_equilibrium_family(system, along=0, values=[1.0], guess=[0.5], step=0.01)
     with pytest.raises(ddirac.Error, match="rigid bodies"):
