@@ -245,12 +245,7 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
         }
         // A glued step, in the chart preferred at the step's predicted midpoint (a choice of
         // coordinates alone: the glued L_d is the same function in every chart).
-        let q = self.chart().progress.config.unwrapped();
-        let predicted = self.chart().predicted_increment();
-        let target = self.preferred_chart(&dim.array(|i| q[i] + 0.5 * predicted[i]));
-        if (target, true) != (self.current, self.glued) {
-            self.switch_to(target, true)?;
-        }
+        self.move_to_preferred(true)?;
         self.sole_here = None;
         let report = self.chart_mut().step()?;
         self.follow();
@@ -260,15 +255,22 @@ impl<S: SystemIn<Dm> + Clone, Dm: Dim> StepperIn<S, Dm> {
     /// A step of a method that switches charts at a step ([`atlas::glues`]): in the chart preferred at
     /// the step's predicted midpoint, with that chart's own scheme.
     fn switched_step(&mut self) -> Result<StepReport, Error> {
-        let (q, dim) = (self.chart().progress.config.unwrapped(), self.dim);
-        let predicted = self.chart().predicted_increment();
-        let target = self.preferred_chart(&dim.array(|i| q[i] + 0.5 * predicted[i]));
-        if (target, false) != (self.current, self.glued) {
-            self.switch_to(target, false)?;
-        }
+        self.move_to_preferred(false)?;
         let report = self.chart_mut().step()?;
         self.follow();
         Ok(report)
+    }
+
+    /// Moves to the chart preferred at the coming step's predicted midpoint ([`Self::preferred_chart`]),
+    /// in its glued or its own steps.
+    fn move_to_preferred(&mut self, glued: bool) -> Result<(), Error> {
+        let (q, dim) = (self.chart().progress.config.unwrapped(), self.dim);
+        let predicted = self.chart().predicted_increment();
+        let target = self.preferred_chart(&dim.array(|i| q[i] + 0.5 * predicted[i]));
+        if (target, glued) != (self.current, self.glued) {
+            self.switch_to(target, glued)?;
+        }
+        Ok(())
     }
 
     /// Keeps the current stepper's progress before a step, to take the step back.

@@ -9,13 +9,14 @@
 //! there, 374 h², is 4e-5, below 0.3 % of the errors compared).
 
 use ddirac::systems::SphericalPendulum;
-use ddirac::{solve, Composition, InitialMomentum, Method, OutputOptions, Problem};
+use ddirac::{solve, Composition, InitialMomentum, Method, OutputOptions, Problem, Solution};
 
 const DURATION: f64 = 20.0;
 
-/// The final bob (a unit vector) after `steps` reduced midpoint steps over T = 20 from 2 rad off the
-/// downward vertical, with polar rate 4 and azimuthal rate 2.5 (over the top, 69 chart switches).
-fn final_bob(steps: usize, atlas: bool, composition: Composition) -> ([f64; 3], usize) {
+/// `steps` reduced midpoint steps composed by `composition` over T = 20 from 2 rad off the downward
+/// vertical, with polar rate 4 and azimuthal rate 2.5 (over the top, 69 chart switches with the
+/// atlas), asserted free of warnings.
+pub(crate) fn over_the_top(steps: usize, atlas: bool, composition: Composition) -> Solution {
     let h = DURATION / steps as f64;
     let q0 = vec![0.0, std::f64::consts::PI - 2.0];
     let problem = Problem::new(h, steps, q0, InitialMomentum::Velocity(vec![2.5, -4.0]));
@@ -23,12 +24,23 @@ fn final_bob(steps: usize, atlas: bool, composition: Composition) -> ([f64; 3], 
     let solution =
         solve(&SphericalPendulum::default(), &problem, &method, &OutputOptions::default()).expect("the run completes");
     assert!(solution.summary.warnings.is_empty(), "{:?}", solution.summary.warnings);
-    let q = solution.q.last().expect("a last row");
-    let (s, c) = q[1].sin_cos();
-    ([s * q[0].cos(), s * q[0].sin(), c], solution.summary.chart_switches)
+    solution
 }
 
-fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+/// The bob (a unit vector) at the last row of `solution`.
+pub(crate) fn last_bob(solution: &Solution) -> [f64; 3] {
+    let q = solution.q.last().expect("a last row");
+    let (s, c) = q[1].sin_cos();
+    [s * q[0].cos(), s * q[0].sin(), c]
+}
+
+/// The final bob of [`over_the_top`] and the chart switches.
+fn final_bob(steps: usize, atlas: bool, composition: Composition) -> ([f64; 3], usize) {
+    let solution = over_the_top(steps, atlas, composition);
+    (last_bob(&solution), solution.summary.chart_switches)
+}
+
+pub(crate) fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a.iter().zip(b).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
 }
 

@@ -8,31 +8,16 @@
 //!
 //! The reference is independent of the atlas: the main chart alone, at 64 000 steps of the same order.
 
-use ddirac::systems::SphericalPendulum;
-use ddirac::{solve, Composition, InitialMomentum, Method, OutputOptions, Problem};
+use super::issue_30_atlas_error_regular_in_h::{distance, last_bob, over_the_top};
+use ddirac::Composition;
 
-const DURATION: f64 = 20.0;
-
-/// The final bob (a unit vector) and the largest relative energy departure after `steps` reduced
-/// midpoint steps composed by `composition` over T = 20, from 2 rad off the downward vertical with
-/// polar rate 4 and azimuthal rate 2.5 (over the top), and the chart switches.
+/// The final bob of [`over_the_top`], the largest departure of H(q_k, p_k) from its initial value
+/// relative to it, and the chart switches.
 fn final_bob(steps: usize, atlas: bool, composition: Composition) -> ([f64; 3], f64, usize) {
-    let h = DURATION / steps as f64;
-    let q0 = vec![0.0, std::f64::consts::PI - 2.0];
-    let problem = Problem::new(h, steps, q0, InitialMomentum::Velocity(vec![2.5, -4.0]));
-    let method = Method { reduced: true, atlas, composition, ..Method::default() };
-    let solution =
-        solve(&SphericalPendulum::default(), &problem, &method, &OutputOptions::default()).expect("the run completes");
-    assert!(solution.summary.warnings.is_empty(), "{:?}", solution.summary.warnings);
-    let q = solution.q.last().expect("a last row");
-    let (s, c) = q[1].sin_cos();
+    let solution = over_the_top(steps, atlas, composition);
     let e0 = solution.energy[0];
     let departure = solution.energy.iter().fold(0.0f64, |m, e| m.max((e - e0).abs())) / e0.abs();
-    ([s * q[0].cos(), s * q[0].sin(), c], departure, solution.summary.chart_switches)
-}
-
-fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a.iter().zip(b).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
+    (last_bob(&solution), departure, solution.summary.chart_switches)
 }
 
 /// (N, the atlas's error, its max |ΔH/H₀|, the main chart's error alone) for each N.
