@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Mapping, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
@@ -92,9 +92,11 @@ class RelativeEquilibriumFamily:
     (members × shape coordinates, in the order of ``shape_names``), ``momentum`` and ``group_velocity``
     (members × group coordinates), ``multipliers`` (members × k × 2, (re, im)), ``frequencies``
     (members × k), ``stable`` (one bool per member); ``members`` (the :class:`RelativeEquilibrium` of
-    each), ``stability_changes`` (the consecutive values between which the stability changes) and
-    ``ended`` (``None``, or the value whose search failed and why: natural continuation stops at a
-    fold, where the family turns back in the momentum)."""
+    each), ``stability_changes`` (the consecutive values between which the stability changes),
+    ``folds`` (where the momentum turns back and the family continues on another branch over the values
+    already visited: :class:`Fold`, each with its ``momentum``, ``shape``, ``shape_momentum`` and
+    ``next_member``, the index of the first member past it) and ``ended`` (``None``, or the value whose
+    search failed and why)."""
 
     along: str
     members: list[RelativeEquilibrium]
@@ -109,6 +111,7 @@ class RelativeEquilibriumFamily:
     frequencies: np.ndarray
     stable: np.ndarray
     stability_changes: list[tuple[float, float]]
+    folds: list["Fold"]
     ended: Optional[tuple[float, str]]
 
     def __init__(self, along: str, found: Mapping[str, Any]) -> None:
@@ -123,6 +126,8 @@ class RelativeEquilibriumFamily:
         self.stable = np.array([m.stable for m in self.members], dtype=bool)
         self.values = self.momentum[:, self.group_names.index(along)].copy()
         self.stability_changes = [(float(a), float(b)) for a, b in found["stability_changes"]]
+        self.folds = [Fold(float(m), np.asarray(s, dtype=float), np.asarray(p, dtype=float), int(k))
+                      for m, s, p, k in found["folds"]]
         ended = found["ended"]
         self.ended = None if ended is None else (float(ended[0]), str(ended[1]))
 
@@ -131,8 +136,20 @@ class RelativeEquilibriumFamily:
 
     def __repr__(self) -> str:
         end = "" if self.ended is None else f", ended at {self.along} momentum {self.ended[0]:.6g}"
+        folds = "".join(f", a fold at {f.momentum:.6g}" for f in self.folds)
         return (f"ddirac.RelativeEquilibriumFamily({len(self)} members along the momentum of {self.along}, "
-                f"{int(self.stable.sum())} stable{end})")
+                f"{int(self.stable.sum())} stable{folds}{end})")
+
+
+class Fold(NamedTuple):
+    """A fold of a :class:`RelativeEquilibriumFamily`: where the momentum of ``along`` turns back
+    (``momentum``), the shape there (``shape``, ``shape_momentum``, in the order of the family's
+    ``shape_names``), and ``next_member``, the index of the family's first member past it."""
+
+    momentum: float
+    shape: np.ndarray
+    shape_momentum: np.ndarray
+    next_member: int
 
 
 def relative_equilibria(system: System, momentum: Values, guess: Values, step: float,
@@ -162,8 +179,9 @@ def relative_equilibrium_family(system: System, along: str, values: Sequence[flo
     """The family of relative equilibria through the one :func:`relative_equilibria` finds from
     ``guess`` at the first of ``values``, continued along the momentum of the group coordinate
     ``along`` over ``values`` (natural continuation: each member's search starts from the members
-    before), the other group momenta held at ``momentum`` (default 0; its entry for ``along`` is
-    replaced). The same search as ``ddirac equilibria --family``:
+    before; where a search fails, pseudo-arclength continuation reaches the value or passes a fold, past
+    which the family continues on its other branch over the values already visited), the other group
+    momenta held at ``momentum`` (default 0; its entry for ``along`` is replaced). The same search as ``ddirac equilibria --family``:
     ``ddirac.relative_equilibrium_family(pendulum, along="phi", values=np.linspace(0.5, 3, 11),
     guess={"theta": 0.5}, step=0.005)``.
 

@@ -107,6 +107,29 @@ def test_the_conical_pendulum_family_follows_its_closed_form():
         assert abs(family.group_velocity[k, 0] - mu / np.sin(theta_star) ** 2) < 1e-6 * mu / np.sin(theta_star) ** 2
 
 
+def test_a_family_passes_its_fold_onto_the_other_branch():
+    # Circular orbits in the field −1/r − a/r³: r² − μ² r + 3a = 0, outer stable, inner unstable, meeting
+    # at the fold μ⁴ = 12a, r = √(3a). The midpoint rule's fixed point is the exact circle here.
+    a = 0.1
+    orbits = ddirac.System("0.5*(r_dot^2 + r^2*phi_dot^2) + 1/r + a/r^3", shape=["r"], group=["phi"],
+                           angles=["phi"], parameters={"a": a})
+    values = np.linspace(1.2, 1.0, 11)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        family = ddirac.relative_equilibrium_family(orbits, along="phi", values=values, guess={"r": 1.0}, step=0.01)
+    assert family.ended is None and len(family.folds) == 1
+    fold = family.folds[0]
+    assert abs(fold.momentum - (12 * a) ** 0.25) < 1e-9 and abs(fold.shape[0] - np.sqrt(3 * a)) < 1e-6
+    outer = fold.next_member
+    assert outer == 8  # μ = 1.20 … 1.06 above the fold (1.0466); the inner circles over the same values
+    np.testing.assert_allclose(family.values, np.concatenate([values[:outer], values[:outer][::-1]]), atol=1e-12)
+    root = np.sqrt(family.values ** 4 - 12 * a)
+    expected = np.where(np.arange(len(family)) < outer, family.values ** 2 + root, family.values ** 2 - root) / 2
+    np.testing.assert_allclose(family.shape[:, 0], expected, rtol=1e-10)
+    np.testing.assert_array_equal(family.stable, np.arange(len(family)) < outer)
+    assert "a fold at 1.0466" in repr(family)
+
+
 def test_python_and_the_command_line_continue_the_same_family(tmp_path):
     out = tmp_path / "family"
     sets = ["initial.q.theta=0.5", "initial.p.phi=0.8", "initial.p.theta=0.0", "method.atlas=false"]

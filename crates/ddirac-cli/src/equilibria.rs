@@ -11,13 +11,14 @@
 //! (the names `equilibria`, `shape`, `momentum`, `group_velocity`, `multipliers` and `stable` are
 //! fixed), and prints a table. With `--family NAME=FROM:TO:COUNT` it continues the equilibrium along the
 //! momentum of the group coordinate NAME ([`relative_equilibrium::family`]): `equilibria` lists the
-//! members, `family` says where the stability changes and where the family ended, and `family.png`
-//! and `family.svg` draw the shape against the momentum (stable solid, unstable dashed).
+//! members in the family's order, `family` says where the stability changes, where the family turns
+//! back at a fold (`folds`) and where it ended, and `family.png` and `family.svg` draw the shape
+//! against the momentum through the folds (stable solid, unstable dashed).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use ddirac::relative_equilibrium::{self, Family, RelativeEquilibrium, SearchOptions};
+use ddirac::relative_equilibrium::{self, Family, Fold, RelativeEquilibrium, SearchOptions};
 use serde::Serialize;
 
 use crate::diagnostics::CliError;
@@ -145,6 +146,7 @@ pub fn command(options: &Options) -> Result<(), CliError> {
             along: f.along.clone(),
             values: f.values(),
             stability_changes: f.stability_changes().into_iter().map(|(a, b)| [a, b]).collect(),
+            folds: f.folds.iter().map(|fold| fold_json(f, fold)).collect(),
             ended: f.ended.as_ref().map(|(at, why)| EndedJson { at: *at, why: why.to_string() }),
         }),
     };
@@ -237,7 +239,29 @@ struct FamilyJson {
     along: String,
     values: Vec<f64>,
     stability_changes: Vec<[f64; 2]>,
+    folds: Vec<FoldJson>,
     ended: Option<EndedJson>,
+}
+
+/// A fold of the family in `equilibria.json`: the momentum there, the shape, and the index of the first
+/// member past it (in `equilibria`).
+#[derive(Serialize)]
+struct FoldJson {
+    momentum: f64,
+    shape: BTreeMap<String, f64>,
+    shape_momentum: BTreeMap<String, f64>,
+    next_member: usize,
+}
+
+fn fold_json(family: &Family, fold: &Fold) -> FoldJson {
+    let names = family.members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
+    let named = |values: &[f64]| names.iter().cloned().zip(values.iter().copied()).collect();
+    FoldJson {
+        momentum: fold.momentum,
+        shape: named(&fold.shape),
+        shape_momentum: named(&fold.shape_momentum),
+        next_member: fold.next_member,
+    }
 }
 
 #[derive(Serialize)]
@@ -259,9 +283,20 @@ fn linspace(from: f64, to: f64, count: usize) -> Vec<f64> {
 /// unstable ones dashed.
 fn family_figure(system: &str, family: &Family) -> Figure {
     let values = family.values();
-    let members = &family.members;
-    let n = members.len();
-    let names = members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
+    // The members in the family's order with its folds between them, a fold drawn in the style of the
+    // member before it: (μ, shape, stable).
+    let mut points: Vec<(f64, &[f64], bool)> = vec![];
+    for k in 0..=family.members.len() {
+        for fold in family.folds.iter().filter(|f| f.next_member == k) {
+            let stable = points.last().is_none_or(|p| p.2);
+            points.push((fold.momentum, &fold.shape, stable));
+        }
+        if let Some(m) = family.members.get(k) {
+            points.push((values[k], &m.shape, m.stable));
+        }
+    }
+    let n = points.len();
+    let names = family.members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
     let panels = names
         .iter()
         .enumerate()
@@ -270,11 +305,11 @@ fn family_figure(system: &str, family: &Family) -> Figure {
             let mut labelled = [false, false];
             let mut start = 0;
             for k in 1..=n {
-                if k == n || members[k].stable != members[start].stable {
-                    // The stretch start..k, joined to the next member so that the line is unbroken.
-                    let points = (start..(k + 1).min(n)).map(|i| (values[i], members[i].shape[j])).collect();
-                    let stable = members[start].stable;
-                    let mut line = Series::line(points);
+                if k == n || points[k].2 != points[start].2 {
+                    // The stretch start..k, joined to the next point so that the line is unbroken.
+                    let line = (start..(k + 1).min(n)).map(|i| (points[i].0, points[i].1[j])).collect();
+                    let stable = points[start].2;
+                    let mut line = Series::line(line);
                     line.dashed = !stable;
                     line.markers = true;
                     if !labelled[usize::from(stable)] {
@@ -290,7 +325,7 @@ fn family_figure(system: &str, family: &Family) -> Figure {
         })
         .collect();
     Figure::new("family", format!("Relative equilibria of {system} along p_{}", family.along), panels)
-        .subtitle("stable solid, unstable dashed; one marker per member")
+        .subtitle("stable solid, unstable dashed; one marker per member and per fold")
 }
 
 /// The printed table of a family.
@@ -310,7 +345,16 @@ fn family_table(system: &str, family: &Family, dir: &Path) -> String {
     header.push_str("  verdict     max |λ| − 1");
     text.push_str(&header);
     text.push('\n');
-    for (value, member) in values.iter().zip(&family.members) {
+    for (k, (value, member)) in values.iter().zip(&family.members).enumerate() {
+        for fold in family.folds.iter().filter(|f| f.next_member == k) {
+            let mut line = format!("  {:>14.6}", fold.momentum);
+            for s in &fold.shape {
+                line.push_str(&format!(" {s:>18.12}"));
+            }
+            line.push_str("  fold: the family turns back");
+            text.push_str(&line);
+            text.push('\n');
+        }
         let mut line = format!("  {value:>14.6}");
         for s in &member.shape {
             line.push_str(&format!(" {s:>18.12}"));
@@ -320,6 +364,12 @@ fn family_table(system: &str, family: &Family, dir: &Path) -> String {
         line.push_str(&format!("  {verdict:<10} {:>10.1e}", largest - 1.0));
         text.push_str(&line);
         text.push('\n');
+    }
+    for fold in &family.folds {
+        text.push_str(&format!(
+            "  the family turns back at a fold at p_{} = {:.10}: it continues on another branch\n",
+            family.along, fold.momentum
+        ));
     }
     for (a, b) in family.stability_changes() {
         text.push_str(&format!("  the stability changes between p_{} = {a} and {b}\n", family.along));

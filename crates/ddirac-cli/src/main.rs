@@ -153,7 +153,9 @@ enum Command {
     ///
     /// With --family NAME=FROM:TO:COUNT the equilibrium is continued along the momentum of the group
     /// coordinate NAME over COUNT equally spaced values from FROM to TO (each search starting from
-    /// the member before), with where the stability changes and where the family ends (a fold), and a
+    /// the members before; where one fails, by pseudo-arclength continuation), through its folds
+    /// (where the momentum turns back, the family continues on its other branch over the values already
+    /// visited), with where the stability changes, the folds, where the family ends if it does, and a
     /// figure (family.png, family.svg: the shape against the momentum, stable solid, unstable dashed).
     #[command(after_help = "Examples:
   ddirac equilibria examples/spherical_pendulum.toml --set initial.q.theta=1.0 --set initial.p.theta=0 --set initial.p.phi=1.6

@@ -30,7 +30,8 @@ pub fn relative_equilibrium<'py>(
 /// The family of relative equilibria through the one nearest to the initial shape of `run_args`,
 /// continued along the momentum of the group coordinate `along` over `values`
 /// ([`ddirac::relative_equilibrium::family`]): `{"members": [dict, ...], "ended": None or (value,
-/// message), "stability_changes": [(a, b), ...]}`.
+/// message), "stability_changes": [(a, b), ...], "folds": [(momentum, shape, shape_momentum,
+/// next_member), ...]}`.
 #[pyfunction]
 pub fn relative_equilibrium_family<'py>(
     py: Python<'py>,
@@ -49,6 +50,9 @@ pub fn relative_equilibrium_family<'py>(
     d.set_item("members", members)?;
     d.set_item("ended", found.ended.as_ref().map(|(value, error)| (*value, error.to_string())))?;
     d.set_item("stability_changes", found.stability_changes())?;
+    let folds: Vec<_> =
+        found.folds.iter().map(|f| (f.momentum, f.shape.clone(), f.shape_momentum.clone(), f.next_member)).collect();
+    d.set_item("folds", folds)?;
     Ok(d)
 }
 

@@ -21,7 +21,8 @@
 //! differences extrapolated to fourth order (Richardson: steps ±δ and ±2δ, δ = 10⁻³ max(1, |x_i|)),
 //! with an estimate of its error from the same extrapolation at 2δ; the multipliers' moduli are
 //! judged against that estimate. [`family`] continues a relative equilibrium along the momentum of one
-//! group coordinate.
+//! group coordinate, through its folds by pseudo-arclength continuation (Keller), each fold located
+//! where the family's tangent has no momentum component ([`Fold`]).
 
 use nalgebra::DMatrix;
 
@@ -280,8 +281,11 @@ pub struct Family {
     pub along: String,
     /// The relative equilibria found, one per value of its momentum, in the order of the values.
     pub members: Vec<RelativeEquilibrium>,
+    /// The folds passed, in the order of the family: at each the momentum turns back, and the family
+    /// continues over the values already visited on another branch.
+    pub folds: Vec<Fold>,
     /// Where the family ended before the last value, and why: the value whose search failed and its
-    /// error (natural continuation ends at a fold, where the family turns back in the momentum).
+    /// error.
     pub ended: Option<(f64, Error)>,
 }
 
@@ -304,9 +308,15 @@ impl Family {
 
 /// The family of relative equilibria through the one [`find`] finds for `problem`, continued along the
 /// momentum of the group coordinate `along` over `values` (natural continuation: each member's search
-/// starts from the member before, extrapolated linearly from the two before). The first value's search
-/// starts from `problem`'s shape; when it fails, so does the family. A later failure ends the family
-/// there ([`Family::ended`]).
+/// starts from the two points of the family before it, extrapolated linearly). The first value's search
+/// starts from `problem`'s shape; when it fails, so does the family.
+///
+/// Where a later search fails, the family is continued from its last two points by pseudo-arclength
+/// (Keller: predictor along the tangent, corrector on the hyperplane normal to it, with DΦ_h and ∂Φ_h/∂μ
+/// by extrapolated central differences). If the momentum reaches the value, its member is found from
+/// there; if the momentum turns back first, the family has a fold: it is located where the tangent's
+/// momentum component vanishes ([`Fold`]), and the family continues on the other branch over the values
+/// already visited, in reverse order. A failure of both ends the family there ([`Family::ended`]).
 pub fn family(
     system: &dyn DynSystem,
     problem: &Problem,
@@ -330,30 +340,315 @@ pub fn family(
     if let Some(v) = values.iter().find(|v| !v.is_finite()) {
         return Err(refuse(format!("the momentum {v} is not a finite number")));
     }
-    let mut members: Vec<RelativeEquilibrium> = vec![];
+    let point = |m: &RelativeEquilibrium, value: f64| [m.shape.clone(), m.shape_momentum.clone(), vec![value]].concat();
+    let (mut members, mut folds) = (Vec::<RelativeEquilibrium>::new(), Vec::<Fold>::new());
     let mut ended = None;
-    for (k, &value) in values.iter().enumerate() {
+    // The last two points of the family, (s, p_s, μ), the newest last.
+    let mut trail: Vec<Point> = vec![];
+    let (mut k, mut forward) = (0usize, true);
+    loop {
+        let value = values[k];
         map.p0[index] = value;
-        let state = |m: &RelativeEquilibrium| [m.shape.clone(), m.shape_momentum.clone()].concat();
-        let guess = match members.len() {
-            0 => map.start(),
-            1 => state(&members[0]),
-            len => {
-                let (a, b) = (state(&members[len - 2]), state(&members[len - 1]));
-                let (va, vb) = (values[k - 2], values[k - 1]);
-                let t = if vb != va { (value - vb) / (vb - va) } else { 0.0 };
-                b.iter().zip(&a).map(|(b, a)| b + t * (b - a)).collect()
-            }
+        let guess = match trail.as_slice() {
+            [] => map.start(),
+            [only] => only[..only.len() - 1].to_vec(),
+            [.., a, b] => extrapolate(a, b, value),
         };
         match solve(&mut map, guess, options) {
-            Ok(found) => members.push(found),
+            Ok(found) => {
+                trail.push(point(&found, value));
+                members.push(found);
+            }
             Err(error @ Error::Interrupted { .. }) => return Err(error),
-            Err(error) if k == 0 => return Err(error),
+            Err(error) if members.is_empty() => return Err(error),
             Err(error) => {
-                ended = Some((value, error));
-                break;
+                let behind = neighbour(k, !forward, values.len()).map(|j| values[j]);
+                let passage = match trail.as_slice() {
+                    [.., a, b] => Some(pass(&mut map, index, (a, b), value, behind, options)),
+                    _ => None,
+                };
+                let passage = match passage {
+                    Some(Ok(passage)) => passage,
+                    Some(Err(interrupted @ Error::Interrupted { .. })) => return Err(interrupted),
+                    _ => {
+                        ended = Some((value, error));
+                        break;
+                    }
+                };
+                for y in &passage.folds {
+                    let n = map.shape.len();
+                    folds.push(Fold {
+                        momentum: y[2 * n],
+                        shape: y[..n].to_vec(),
+                        shape_momentum: y[n..2 * n].to_vec(),
+                        next_member: members.len(),
+                    });
+                    forward = !forward;
+                }
+                let Some((target, guess, before)) = passage.reached else { break };
+                if passage.folds.len() % 2 == 1 {
+                    k = neighbour(k, forward, values.len()).expect("a value lies behind a fold the family reached");
+                }
+                map.p0[index] = target;
+                match solve(&mut map, guess, options) {
+                    Ok(found) => {
+                        trail = vec![before, point(&found, target)];
+                        members.push(found);
+                    }
+                    Err(error @ Error::Interrupted { .. }) => return Err(error),
+                    Err(error) => {
+                        ended = Some((target, error));
+                        break;
+                    }
+                }
             }
         }
+        if trail.len() > 2 {
+            trail.remove(0);
+        }
+        match neighbour(k, forward, values.len()) {
+            Some(next) if folds.len() <= MAX_FOLDS => k = next,
+            _ => break,
+        }
     }
-    Ok(Family { along: along.to_owned(), members, ended })
+    Ok(Family { along: along.to_owned(), members, folds, ended })
+}
+
+/// The index after `k` among `len` values, going forward or backward.
+fn neighbour(k: usize, forward: bool, len: usize) -> Option<usize> {
+    match forward {
+        true => (k + 1 < len).then_some(k + 1),
+        false => k.checked_sub(1),
+    }
+}
+
+/// (s, p_s) at the momentum `value` on the line through the points `a` and `b` of the family.
+fn extrapolate(a: &[f64], b: &[f64], value: f64) -> Vec<f64> {
+    let m = a.len() - 1;
+    let t = if b[m] != a[m] { (value - b[m]) / (b[m] - a[m]) } else { 0.0 };
+    b[..m].iter().zip(&a[..m]).map(|(b, a)| b + t * (b - a)).collect()
+}
+
+/// A fold of a family: where its momentum turns back, and the family with it onto another branch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fold {
+    /// The momentum of the family's group coordinate at the fold.
+    pub momentum: f64,
+    /// s* at the fold.
+    pub shape: Vec<f64>,
+    /// p_s* at the fold.
+    pub shape_momentum: Vec<f64>,
+    /// The index of the first member past the fold: the members before it lie on the branch that
+    /// reaches the fold, those from it on the branch that leaves it.
+    pub next_member: usize,
+}
+
+/// The most arclength steps of one passage between two values of the momentum.
+const MAX_ARCLENGTH_STEPS: usize = 400;
+
+/// The most folds a family passes (each turns the family back over the values already visited).
+const MAX_FOLDS: usize = 8;
+
+/// A point of a family in y = (s, p_s, μ): the momentum last.
+type Point = Vec<f64>;
+
+/// Where an arclength passage ended: at a value of the momentum (a guess there, interpolated between the
+/// points that straddle it, and the point before), with the folds passed on the way; or at a fold past
+/// which no value lies.
+struct Passage {
+    folds: Vec<Point>,
+    reached: Option<(f64, Point, Point)>,
+}
+
+impl ReducedMap<'_> {
+    /// Φ_h(x) − x on the level μ, for y = (x, μ), with the momentum of coordinate `index`.
+    fn gap(&mut self, index: usize, y: &[f64]) -> Result<Vec<f64>, Error> {
+        let m = y.len() - 1;
+        self.p0[index] = y[m];
+        let (image, _) = self.apply(&y[..m])?;
+        Ok(image.iter().zip(y).map(|(a, b)| a - b).collect())
+    }
+
+    /// The Jacobian of y ↦ Φ_h(x) − x on the level μ: [DΦ_h − I | ∂Φ_h/∂μ], m × (m + 1), by the
+    /// extrapolated central differences of [`ReducedMap::jacobian`].
+    fn extended_jacobian(&mut self, index: usize, y: &[f64]) -> Result<DMatrix<f64>, Error> {
+        let m = y.len() - 1;
+        self.p0[index] = y[m];
+        let (jacobian, _) = self.jacobian(&y[..m])?;
+        let delta = 1e-3 * y[m].abs().max(1.0);
+        let mut at = |factor: f64| -> Result<Vec<f64>, Error> {
+            self.p0[index] = y[m] + factor * delta;
+            Ok(self.apply(&y[..m])?.0)
+        };
+        let (p1, m1, p2, m2) = (at(1.0)?, at(-1.0)?, at(2.0)?, at(-2.0)?);
+        self.p0[index] = y[m];
+        let mut extended = DMatrix::zeros(m, m + 1);
+        extended.view_mut((0, 0), (m, m)).copy_from(&(jacobian - DMatrix::identity(m, m)));
+        for i in 0..m {
+            let (d1, d2) = ((p1[i] - m1[i]) / (2.0 * delta), (p2[i] - m2[i]) / (4.0 * delta));
+            extended[(i, m)] = (4.0 * d1 - d2) / 3.0;
+        }
+        Ok(extended)
+    }
+}
+
+/// The unit tangent of the family at `y` oriented along `along`: the kernel of the extended Jacobian `a`.
+fn tangent(a: &DMatrix<f64>, along: &[f64]) -> Option<Point> {
+    let m = a.nrows();
+    let mut bordered = DMatrix::zeros(m + 1, m + 1);
+    bordered.view_mut((0, 0), (m, m + 1)).copy_from(a);
+    bordered.row_mut(m).iter_mut().zip(along).for_each(|(b, t)| *b = *t);
+    let mut rhs = nalgebra::DVector::zeros(m + 1);
+    rhs[m] = 1.0;
+    let t = bordered.full_piv_lu().solve(&rhs)?;
+    let norm = t.norm();
+    (norm.is_finite() && norm > 0.0).then(|| t.iter().map(|x| x / norm).collect())
+}
+
+/// The point of the family on the hyperplane through `predicted` normal to `t` (pseudo-arclength),
+/// by Newton's method from `predicted`, with the family's tangent there.
+fn correct(
+    map: &mut ReducedMap<'_>,
+    index: usize,
+    predicted: &[f64],
+    t: &[f64],
+    options: &SearchOptions,
+) -> Result<(Point, Point), Error> {
+    let m = predicted.len() - 1;
+    let mut y = predicted.to_vec();
+    for _ in 0..options.max_iterations {
+        let gap = map.gap(index, &y)?;
+        let a = map.extended_jacobian(index, &y)?;
+        let mut bordered = DMatrix::zeros(m + 1, m + 1);
+        bordered.view_mut((0, 0), (m, m + 1)).copy_from(&a);
+        bordered.row_mut(m).iter_mut().zip(t).for_each(|(b, t)| *b = *t);
+        let plane: f64 = y.iter().zip(predicted).zip(t).map(|((y, p), t)| (y - p) * t).sum();
+        let rhs = nalgebra::DVector::from_iterator(m + 1, gap.iter().chain([&plane]).map(|v| -v));
+        let step = bordered.full_piv_lu().solve(&rhs).ok_or(Error::RelativeEquilibrium {
+            iterations: 0,
+            residual: amax(&gap),
+            cause: SearchFailure::Singular,
+        })?;
+        y.iter_mut().zip(step.iter()).for_each(|(y, d)| *y += d);
+        if !y.iter().all(|v| v.is_finite()) {
+            break;
+        }
+        if amax(step.as_slice()) <= options.tolerance * amax(&y).max(1.0) {
+            let a = map.extended_jacobian(index, &y)?;
+            if let Some(tangent) = tangent(&a, t) {
+                return Ok((y, tangent));
+            }
+            break;
+        }
+    }
+    Err(Error::RelativeEquilibrium {
+        iterations: options.max_iterations,
+        residual: f64::NAN,
+        cause: SearchFailure::NoConvergence,
+    })
+}
+
+/// The fold between the points `a` and `b` of the family, whose tangents `ta` and `tb` point to
+/// opposite sides in the momentum: the point where the tangent's momentum component vanishes, found by
+/// regula falsi (Illinois) on the arclength from `a` along `ta`.
+fn locate_fold(
+    map: &mut ReducedMap<'_>,
+    index: usize,
+    (a, ta): (&Point, &Point),
+    (b, tb): (&Point, &Point),
+    options: &SearchOptions,
+) -> Result<Point, Error> {
+    let m = a.len() - 1;
+    let mut low = (0.0, ta[m], a.clone());
+    let mut high = (b.iter().zip(a).zip(ta.iter()).map(|((b, a), t)| (b - a) * t).sum::<f64>(), tb[m], b.clone());
+    let mut side = 0i8;
+    for _ in 0..40 {
+        let (f0, f1) = (low.1, high.1);
+        let sigma = low.0 - f0 * (high.0 - low.0) / (f1 - f0);
+        if !(sigma > low.0.min(high.0) && sigma < low.0.max(high.0)) {
+            break;
+        }
+        let predicted: Point = a.iter().zip(ta.iter()).map(|(a, t)| a + sigma * t).collect();
+        let (y, t) = correct(map, index, &predicted, ta, options)?;
+        let f = t[m];
+        if f.abs() <= 1e-10 || (high.0 - low.0).abs() <= 1e-12 * amax(&y).max(1.0) {
+            return Ok(y);
+        }
+        // Illinois: halve the value kept at the end that stays twice in a row.
+        if (f > 0.0) == (f0 > 0.0) {
+            low = (sigma, f, y);
+            if side == -1 {
+                high.1 *= 0.5;
+            }
+            side = -1;
+        } else {
+            high = (sigma, f, y);
+            if side == 1 {
+                low.1 *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok(if low.1.abs() < high.1.abs() { low.2 } else { high.2 })
+}
+
+/// Continues the family by pseudo-arclength from its last two points `a` and `b` until the momentum
+/// reaches `ahead`, or, past a fold (where it turns back), `behind` (past a second fold `ahead` again).
+fn pass(
+    map: &mut ReducedMap<'_>,
+    index: usize,
+    (a, b): (&Point, &Point),
+    ahead: f64,
+    behind: Option<f64>,
+    options: &SearchOptions,
+) -> Result<Passage, Error> {
+    let m = b.len() - 1;
+    let chord: Point = b.iter().zip(a).map(|(b, a)| b - a).collect();
+    let longest = chord.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let no_passage = |cause| Error::RelativeEquilibrium { iterations: 0, residual: f64::NAN, cause };
+    if !(longest > 0.0 && longest.is_finite()) {
+        return Err(no_passage(SearchFailure::NoConvergence));
+    }
+    let chord: Point = chord.iter().map(|c| c / longest).collect();
+    let mut t = tangent(&map.extended_jacobian(index, b)?, &chord).unwrap_or(chord);
+    let (mut y, mut ds, mut direction) = (b.clone(), longest, t[m].signum());
+    let mut folds: Vec<Point> = vec![];
+    let mut target = Some(ahead);
+    for _ in 0..MAX_ARCLENGTH_STEPS {
+        let predicted: Point = y.iter().zip(&t).map(|(y, t)| y + ds * t).collect();
+        let (next, t_next) = match correct(map, index, &predicted, &t, options) {
+            Ok(corrected) => corrected,
+            Err(interrupted @ Error::Interrupted { .. }) => return Err(interrupted),
+            Err(error) => {
+                ds *= 0.5;
+                if ds < 1e-6 * longest {
+                    return Err(error);
+                }
+                continue;
+            }
+        };
+        // The momentum is compared from the fold on when the fold lies between y and next.
+        let mut from = y.clone();
+        if t_next[m] * direction < 0.0 {
+            let fold = locate_fold(map, index, (&y, &t), (&next, &t_next), options)?;
+            from = fold.clone();
+            folds.push(fold);
+            direction = -direction;
+            target = if folds.len() % 2 == 1 { behind } else { Some(ahead) };
+            let Some(_) = target else { return Ok(Passage { folds, reached: None }) };
+            if folds.len() > MAX_FOLDS {
+                return Err(no_passage(SearchFailure::NoConvergence));
+            }
+        }
+        let value = target.expect("a passage has a target until a fold with none behind it");
+        if (from[m] - value) * (next[m] - value) <= 0.0 && next[m] != from[m] {
+            let w = (value - from[m]) / (next[m] - from[m]);
+            let guess = from[..m].iter().zip(&next[..m]).map(|(f, n)| f + w * (n - f)).collect();
+            return Ok(Passage { folds, reached: Some((value, guess, from)) });
+        }
+        y = next;
+        t = t_next;
+        ds = (1.5 * ds).min(longest);
+    }
+    Err(no_passage(SearchFailure::NoConvergence))
 }

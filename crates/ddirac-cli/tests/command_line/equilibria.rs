@@ -221,7 +221,7 @@ fn circles(mu: f64) -> (f64, f64) {
 }
 
 #[test]
-fn a_family_is_continued_along_the_momentum_to_its_fold() {
+fn a_family_is_continued_through_its_fold_onto_the_inner_circles() {
     let dir = TempDir::new("equilibria-family");
     let spec = dir.file("circles.toml", TWO_CIRCLES);
     let out = dir.out();
@@ -231,24 +231,59 @@ fn a_family_is_continued_along_the_momentum_to_its_fold() {
     let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
     let members = file["equilibria"].as_array().unwrap();
     let fold = 1.2f64.powf(0.25);
-    // The outer circles down to the last value above the fold, each the exact one, all stable.
-    let last = members.last().unwrap()["momentum"][0].as_f64().unwrap();
-    assert!(last > fold && last - 0.01 < fold, "the family ends at {last}, the fold is at {fold}:\n{text}");
-    for m in members {
-        let mu = m["momentum"][0].as_f64().unwrap();
-        let r = m["shape"]["r"].as_f64().unwrap();
-        assert!((r - circles(mu).1).abs() < 1e-10 * r, "μ = {mu}: r = {r}, outer circle {}", circles(mu).1);
-        assert_eq!(m["stable"], true, "μ = {mu}");
+    // Down the outer circles to the last value above the fold (1.05), through the fold, and up the
+    // inner circles over the same values back to 1.4: each member the exact circle (the midpoint rule's
+    // fixed point is exact here), the outer stable and the inner unstable.
+    let mu = |m: &Value| m["momentum"][0].as_f64().unwrap();
+    let outer = members.iter().take_while(|m| m["stable"] == true).count();
+    assert_eq!((outer, members.len()), (36, 72), "{text}");
+    for (k, m) in members.iter().enumerate() {
+        let (mu, r) = (mu(m), m["shape"]["r"].as_f64().unwrap());
+        let expected = if k < outer { circles(mu).1 } else { circles(mu).0 };
+        assert!((r - expected).abs() < 1e-10 * r, "member {k}, μ = {mu}: r = {r}, the circle is at {expected}");
+        assert_eq!(m["stable"], k < outer, "member {k}, μ = {mu}");
+        let value = if k < outer { 1.4 - 0.01 * k as f64 } else { 1.4 - 0.01 * (71 - k) as f64 };
+        assert!((mu - value).abs() < 1e-12, "member {k}: μ = {mu}, the value {value}");
     }
+    // The fold: where the circles meet, μ⁴ = 12a, r = √(3a).
     let family = &file["family"];
     assert_eq!(family["along"], "phi");
-    assert!(family["stability_changes"].as_array().unwrap().is_empty());
-    let at = family["ended"]["at"].as_f64().unwrap();
-    assert!(at < fold && at + 0.01 > fold, "ended at {at}");
-    assert!(text.contains("the family ends before p_phi ="), "{text}");
+    let folds = family["folds"].as_array().unwrap();
+    assert_eq!(folds.len(), 1, "{text}");
+    let (at, r) = (folds[0]["momentum"].as_f64().unwrap(), folds[0]["shape"]["r"].as_f64().unwrap());
+    assert!((at - fold).abs() < 1e-9, "the fold at μ = {at}, the closed form {fold}");
+    assert!((r - 0.3f64.sqrt()).abs() < 1e-6, "the fold at r = {r}, the closed form {}", 0.3f64.sqrt());
+    assert_eq!(folds[0]["next_member"], 36);
+    let changes = family["stability_changes"].as_array().unwrap();
+    assert_eq!(changes.len(), 1, "{changes:?}");
+    assert!(family["ended"].is_null(), "{}", family["ended"]);
+    assert!(text.contains("the family turns back at a fold at p_phi = 1.046"), "{text}");
+    assert!(text.contains("fold: the family turns back"), "{text}");
     for figure in ["family.png", "family.svg"] {
         assert!(std::fs::metadata(out.join(figure)).map(|m| m.len() > 1000).unwrap_or(false), "{figure}");
     }
+    // Over values on both sides of the fold, the family turns at it and comes back over the values
+    // above it; those below it (no circle there) are not searched.
+    let below = TempDir::new("equilibria-family-below");
+    let out = below.out();
+    let args = [
+        "equilibria",
+        &spec,
+        "--family",
+        "phi=1.1:0.9:21",
+        "--set",
+        "initial.q.r=0.9",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    let output = ddirac(&args, &below.0);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(out.join("equilibria.json")).unwrap()).unwrap();
+    let members = file["equilibria"].as_array().unwrap();
+    assert_eq!(file["family"]["folds"].as_array().unwrap().len(), 1);
+    assert_eq!(members.len(), 12, "1.1 … 1.05 outer, 1.05 … 1.1 inner");
+    assert!(file["family"]["ended"].is_null());
     // The inner circles, from a guess near them, upwards: all unstable. (They shrink as 3a/μ², and turn
     // at μ/r² = 340 rad/s at μ = 2: h = 0.001 resolves them.)
     let inner = TempDir::new("equilibria-family-inner");

@@ -140,6 +140,27 @@ impl<Dm: Dim> CompiledPair<Dm> {
         Some((first, mixed))
     }
 
+    /// The mixed block ∂²f/∂a∂b at (`base`, `b`), entry (i, j) handed to `entry` (no first
+    /// derivatives built, nothing allocated); `false` where a guard of the trace fails.
+    pub fn mixed_with(&self, base: &[f64], b: &[f64], mut entry: impl FnMut(usize, usize, f64)) -> bool {
+        let n = self.dim.n();
+        let mut buffers = self.buffers.borrow_mut();
+        let Buffers { inputs, outputs } = &mut *buffers;
+        inputs[..n].copy_from_slice(base);
+        inputs[n..2 * n].copy_from_slice(b);
+        let outputs = &mut outputs[..self.mixed.outputs()];
+        self.mixed.call(inputs, outputs);
+        if !PairPrograms::holds(&self.guards, &outputs[outputs.len() - self.guards.len()..]) {
+            return false;
+        }
+        for i in 0..n {
+            for j in 0..n {
+                entry(i, j, outputs[1 + 2 * n + i * n + j]);
+            }
+        }
+        true
+    }
+
     /// Checks the compiled numbers against `dual` (the same derivatives by dual numbers) at one point:
     /// every entry within `tolerance` relative to the largest entry of its block.
     pub fn check_against(

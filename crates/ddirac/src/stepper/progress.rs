@@ -67,6 +67,10 @@ pub(super) struct Record<Dm: Dim> {
     /// With [`Method::sensitivities`]: d(q_k, p_k)/d(q_k0, p_k0) in the current chart's coordinates
     /// ([`crate::tangent_map`]); NaN from a step without a tangent map on.
     pub(super) tangent: Option<nalgebra::DMatrix<f64>>,
+    /// Room for the product of the run's tangent map with a step's.
+    tangent_scratch: Option<nalgebra::DMatrix<f64>>,
+    /// Whether the run's tangent map has stopped being finite (and the warning been given).
+    tangent_lost: bool,
 }
 
 /// `clone_from` reuses the vectors' memory: the stepper of an atlas saves a step's progress into
@@ -112,6 +116,8 @@ impl<Dm: Dim> Clone for Record<Dm> {
             warnings: self.warnings.clone(),
             resolution: self.resolution.clone(),
             tangent: self.tangent.clone(),
+            tangent_scratch: None,
+            tangent_lost: self.tangent_lost,
         }
     }
 
@@ -126,6 +132,7 @@ impl<Dm: Dim> Clone for Record<Dm> {
         self.warnings.0.clone_from(&source.warnings.0);
         self.resolution.clone_from(&source.resolution);
         self.tangent.clone_from(&source.tangent);
+        self.tangent_lost = source.tangent_lost;
     }
 }
 
@@ -134,9 +141,13 @@ impl<Dm: Dim> Record<Dm> {
     /// "chart switch") at `at` = (k, t_k), and warns once if the run's tangent map stops being finite.
     pub(crate) fn compose_tangent(&mut self, map: &nalgebra::DMatrix<f64>, at: (usize, f64), what: &str) {
         let Some(run) = &mut self.tangent else { return };
-        let was_finite = run.iter().all(|x| x.is_finite());
-        *run = map * &*run;
-        if was_finite && !run.iter().all(|x| x.is_finite()) {
+        // The product goes into the scratch matrix, which then trades places with the run's map.
+        let scratch = self.tangent_scratch.get_or_insert_with(|| run.clone());
+        crate::tangent_map::multiply(scratch.as_mut_slice(), map.as_slice(), run.as_slice(), run.nrows());
+        std::mem::swap(scratch, run);
+        // Once lost, the map stays lost (NaN): the warning is given once.
+        if !self.tangent_lost && !all_finite(run.as_slice()) {
+            self.tangent_lost = true;
             let cause = if map.iter().all(|x| x.is_finite()) {
                 "its entries overflowed: the flow stretches some direction by more than 1e308"
             } else if what == "step" {
@@ -243,6 +254,8 @@ impl<Dm: Dim> Progress<Dm> {
             warnings: Warnings(warnings),
             resolution: Resolution::new(dim),
             tangent: method.sensitivities.then(|| nalgebra::DMatrix::identity(2 * dim.n(), 2 * dim.n())),
+            tangent_scratch: None,
+            tangent_lost: false,
         };
         record.drift(split, &momenta, &p);
         Self {
@@ -349,7 +362,7 @@ impl<Dm: Dim> Progress<Dm> {
         }
         let stats = newton::NewtonStats { iterations: 1, residual, jacobians: 1 };
         let (momenta_next, discrete_energy) = (s.momenta_next, s.value);
-        let tangent = sub_step_tangent(context, e, self.config.base(), &z, None);
+        let tangent = sub_step_tangent(e, self.config.base(), &z, None);
         let taken =
             Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back: false, z, composed: None, tangent };
         Some(self.commit(taken, context))
@@ -472,7 +485,7 @@ impl<Dm: Dim> Progress<Dm> {
             let pv = pv_sum::<Dm>(&self.p_now, &p_next, &dq);
             (pv, p_next)
         });
-        let tangent = sub_step_tangent(context, e, self.config.base(), &z, None);
+        let tangent = sub_step_tangent(e, self.config.base(), &z, None);
         Ok(Taken { dq, momenta_next, discrete_energy, pv, stats, fell_back, z, composed: None, tangent })
     }
 
@@ -520,7 +533,7 @@ impl<Dm: Dim> Progress<Dm> {
             stats.residual = stats.residual.max(solved.stats.residual);
             fell_back |= solved.fell_back;
             momenta = solved.momenta_next;
-            tangent = sub_step_tangent(context, e, config.base(), &solved.z, tangent);
+            tangent = sub_step_tangent(e, config.base(), &solved.z, tangent);
             config.advance(&dq);
             dq_step.as_mut().iter_mut().zip(dq.as_ref()).for_each(|(s, d)| *s += d);
             zs.push(solved.z);
@@ -730,20 +743,13 @@ struct Taken<Dm: Dim> {
 /// With [`Method::sensitivities`], the tangent map of a sub-step of `e` from chart base `q`
 /// solved by `z`, after the tangent map `before` of the step's earlier sub-steps (NaN where a
 /// sub-step has none); `None` otherwise.
-fn sub_step_tangent<S, Sc: Scheme<Dm>, Dm: Dim>(
-    context: &Context<S, Dm>,
+fn sub_step_tangent<Sc: Scheme<Dm>, Dm: Dim>(
     e: &Equipped<Sc, Dm>,
     q: &Dm::Array<f64>,
     z: &Dm::Vector,
     before: Option<nalgebra::DMatrix<f64>>,
 ) -> Option<nalgebra::DMatrix<f64>> {
-    let tangent = e.tangent.as_ref()?;
-    let n = context.dim.n();
-    let map = tangent.step(&e.scheme, q, z).unwrap_or_else(|| nalgebra::DMatrix::from_element(2 * n, 2 * n, f64::NAN));
-    Some(match before {
-        Some(before) => map * before,
-        None => map,
-    })
+    Some(e.tangent.as_ref()?.step(&e.scheme, q, z, before))
 }
 
 /// The largest of `start` (not NaN) and the |v| of `values`, NaN entries skipped: the fold of
