@@ -286,14 +286,16 @@ fn family_figure(system: &str, family: &Family) -> Figure {
     // The members in the family's order with its folds between them, a fold drawn in the style of the
     // member before it: (μ, shape, stable).
     let mut points: Vec<(f64, &[f64], bool)> = vec![];
-    for k in 0..=family.members.len() {
-        for fold in family.folds.iter().filter(|f| f.next_member == k) {
+    let folds_before = |k: usize| family.folds.iter().filter(move |f| f.next_member == k);
+    for (k, (m, value)) in family.members.iter().zip(&values).enumerate() {
+        for fold in folds_before(k) {
             let stable = points.last().is_none_or(|p| p.2);
             points.push((fold.momentum, &fold.shape, stable));
         }
-        if let Some(m) = family.members.get(k) {
-            points.push((values[k], &m.shape, m.stable));
-        }
+        points.push((*value, &m.shape, m.stable));
+    }
+    for fold in folds_before(family.members.len()) {
+        points.push((fold.momentum, &fold.shape, points.last().is_none_or(|p| p.2)));
     }
     let n = points.len();
     let names = family.members.first().map(|m| m.shape_names.clone()).unwrap_or_default();
