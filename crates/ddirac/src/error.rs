@@ -755,6 +755,15 @@ impl std::fmt::Display for Time {
 pub enum SearchFailure {
     /// The iterates did not settle within the iteration limit.
     NoConvergence,
+    /// The iterates ran off: an entry of the last one is over a thousand times the first guess's
+    /// largest entry (or 1). A map whose step barely moves far out (a body far from the centre of a
+    /// central field) has a residual that vanishes there without an equilibrium.
+    RanOff {
+        /// The entry: a shape coordinate, or `p_` and its name for its momentum.
+        name: String,
+        /// Its value at the last iterate.
+        value: f64,
+    },
     /// Φ_h − I is singular at an iterate: a multiplier 1.
     Singular,
     /// A step of the method failed at an iterate.
@@ -768,6 +777,11 @@ impl std::fmt::Display for SearchFailure {
                 f,
                 "the iterates did not settle; start nearer to one (the spec's initial shape and shape momenta are the \
                  first guess)"
+            ),
+            Self::RanOff { name, value } => write!(
+                f,
+                "the iterates ran off to {name} = {value:.3e}, where the map's residual fades without an \
+                 equilibrium; start nearer to one (the spec's initial shape and shape momenta are the first guess)"
             ),
             Self::Singular => write!(
                 f,

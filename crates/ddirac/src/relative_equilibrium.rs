@@ -203,9 +203,20 @@ fn solve(map: &mut ReducedMap<'_>, mut x: Vec<f64>, options: &SearchOptions) -> 
     };
     let (image, _) = map.apply(&x).map_err(|e| step_failed(0, f64::NAN, e))?;
     let mut g: Vec<f64> = image.iter().zip(&x).map(|(a, b)| a - b).collect();
+    let far = 1e3 * amax(&x).max(1.0);
     loop {
         if iterations >= options.max_iterations {
-            return Err(failed(iterations, amax(&g), SearchFailure::NoConvergence));
+            let (k, value) =
+                x.iter().enumerate().fold((0usize, 0.0f64), |m, (k, v)| if v.abs() > m.1.abs() { (k, *v) } else { m });
+            let cause = match value.abs() > far {
+                true => {
+                    let name = &map.coordinates[map.shape[k % n]].name;
+                    let name = if k < n { name.clone() } else { format!("p_{name}") };
+                    SearchFailure::RanOff { name, value }
+                }
+                false => SearchFailure::NoConvergence,
+            };
+            return Err(failed(iterations, amax(&g), cause));
         }
         let (jacobian, _) = map.jacobian(&x).map_err(|e| step_failed(iterations, amax(&g), e))?;
         let a = jacobian - DMatrix::identity(2 * n, 2 * n);

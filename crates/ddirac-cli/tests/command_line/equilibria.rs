@@ -330,6 +330,10 @@ fn a_family_of_wrong_shape_is_refused() {
         let output = ddirac(&["equilibria", &spec, "--family", family, "--out", out.to_str().unwrap()], &dir.0);
         assert_fails(&output, &dir, &[needle]);
     }
+    // A search whose iterates run off to large r (where the step barely moves r and the residual fades)
+    // says so, naming the coordinate, instead of only that they did not settle.
+    let output = ddirac(&["equilibria", &spec, "--set", "initial.p.phi=1.1", "--out", out.to_str().unwrap()], &dir.0);
+    assert_fails(&output, &dir, &["the iterates ran off to r = "]);
     // A family whose first member is not found fails as the single search does.
     let output = ddirac(&["equilibria", &spec, "--family", "phi=0.5:0.6:2", "--out", out.to_str().unwrap()], &dir.0);
     assert_fails(&output, &dir, &["no relative equilibrium found"]);
